@@ -11,8 +11,7 @@ function(glint_embed_shaders target shader_dir)
   endforeach()
   add_custom_command(
     OUTPUT "${_out}"
-    COMMAND ${CMAKE_COMMAND} -DSHADER_DIR=${shader_dir} -DOUT=${_out} "-DFILES=${_files}"
-            -P "${CMAKE_SOURCE_DIR}/cmake/EmbedShadersScript.cmake"
+    COMMAND ${CMAKE_COMMAND} -DSHADER_DIR=${shader_dir} -DOUT=${_out} -P "${CMAKE_SOURCE_DIR}/cmake/EmbedShadersScript.cmake"
     DEPENDS ${_abs} "${CMAKE_SOURCE_DIR}/cmake/EmbedShadersScript.cmake"
     COMMENT "Embedding shaders")
   target_sources(${target} PRIVATE "${_out}")

@@ -1,4 +1,7 @@
-# Script mode: writes OUT, a C++ file defining glint::embedded_shaders() from FILES in SHADER_DIR.
+# Script mode: writes OUT, a C++ file defining glint::embedded_shaders() from SHADER_DIR.
+file(GLOB_RECURSE FILES RELATIVE "${SHADER_DIR}" "${SHADER_DIR}/*.glsl" "${SHADER_DIR}/*.vert"
+     "${SHADER_DIR}/*.frag")
+list(SORT FILES)
 set(_body "")
 foreach(f IN LISTS FILES)
   file(READ "${SHADER_DIR}/${f}" _text)

@@ -1,0 +1,16 @@
+// A one-line progress bar on stderr: done/total, rate and ETA, redrawn in place.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace glint {
+
+// "[########            ] 32/64 spp  12.5 spp/s  ETA 0:03"
+std::string format_progress(int64_t done, int64_t total, double seconds, const char* unit,
+                            int bar_width = 24);
+
+// For a time budget: "[####        ] 3.2/10.0 s  45 spp  14.1 spp/s"
+std::string format_time_progress(double seconds, double budget, int64_t samples, int bar_width = 24);
+
+}  // namespace glint

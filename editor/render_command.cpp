@@ -1,0 +1,182 @@
+#include "editor/render_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+
+#include <epoxy/gl.h>
+
+#include "editor/progress_bar.h"
+#include "renderer/gl_context.h"
+#include "renderer/gpu_renderer.h"
+#include "renderer/image.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace {
+
+const char* const kUsage =
+    "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
+    "                    [--width W] [--height H] [--seed S]\n"
+    "\n"
+    "Renders a project headlessly (EGL; no window or display needed).\n"
+    "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
+    "                     .hdr and .exr hold the linear radiance (EXR: float32 RGBA)\n"
+    "  --spp N            samples per pixel (default 64)\n"
+    "  --time SECONDS     render for this long instead of a fixed sample count\n"
+    "  --width W          image width (default: the project's film; with only one of\n"
+    "  --height H         width or height given, the other keeps the film's aspect)\n"
+    "  --seed S           sample sequence (default: the project's render.seed)\n"
+    "Exit codes: 0 done, 1 bad project or failed render, 2 bad arguments.\n";
+
+struct Options {
+  std::string project;
+  std::string output;
+  std::optional<long> spp;
+  std::optional<double> seconds;
+  std::optional<long> width, height, seed;
+};
+
+struct UsageError {
+  std::string message;
+};
+
+long parse_integer(const std::string& option, const std::string& text, long lo, long hi) {
+  char* end = nullptr;
+  errno = 0;
+  long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
+    throw UsageError{option + " expects an integer from " + std::to_string(lo) + " to " +
+                     std::to_string(hi) + ", got '" + text + "'"};
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 0; i < argc; ++i) {
+    std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
+      return argv[++i];
+    };
+    if (a == "-o" || a == "--output") o.output = value();
+    else if (a == "--spp") o.spp = parse_integer(a, value(), 1, 1L << 30);
+    else if (a == "--time") {
+      std::string v = value();
+      char* end = nullptr;
+      double s = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || !std::isfinite(s) || s <= 0)
+        throw UsageError{"--time expects a positive number of seconds, got '" + v + "'"};
+      o.seconds = s;
+    } else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
+    else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
+    else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
+    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
+    else if (o.project.empty()) o.project = a;
+    else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
+  }
+  if (o.project.empty()) throw UsageError{"no project file given"};
+  if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
+  if (o.spp && o.seconds) throw UsageError{"give --spp or --time, not both"};
+  auto ext = std::filesystem::path(o.output).extension().string();
+  if (ext != ".png" && ext != ".hdr" && ext != ".exr")
+    throw UsageError{"output '" + o.output + "' must end in .png, .hdr or .exr"};
+  return o;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+const char* render_command_usage() { return kUsage; }
+
+int run_render_command(int argc, char** argv) {
+  for (int i = 0; i < argc; ++i)
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+  Options o;
+  try {
+    o = parse(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "glint render: %s\n\n%s", e.message.c_str(), kUsage);
+    return 2;
+  }
+
+  try {
+    Scene scene = load_project(o.project);
+    int width = scene.film.width, height = scene.film.height;
+    if (o.width && o.height) {
+      width = static_cast<int>(*o.width);
+      height = static_cast<int>(*o.height);
+    } else if (o.width) {
+      width = static_cast<int>(*o.width);
+      height = std::max(1, static_cast<int>(std::lround(*o.width * double(scene.film.height) / scene.film.width)));
+    } else if (o.height) {
+      height = static_cast<int>(*o.height);
+      width = std::max(1, static_cast<int>(std::lround(*o.height * double(scene.film.width) / scene.film.height)));
+    }
+    if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
+
+    auto context = HeadlessGLContext::create();
+    std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
+                 gl_renderer_name().c_str(), context->platform().c_str());
+    GpuRenderer renderer;
+    renderer.sync(scene, width, height);
+
+    const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);
+    const bool interactive = isatty(STDERR_FILENO);
+    auto start = std::chrono::steady_clock::now();
+    double last_report = -1e9;
+    int batch = 1;
+    for (;;) {
+      double elapsed = seconds_since(start);
+      if (o.seconds ? elapsed >= *o.seconds && renderer.sample_count() > 0
+                    : renderer.sample_count() >= target)
+        break;
+      int k = o.seconds ? batch : static_cast<int>(std::min<int64_t>(batch, target - renderer.sample_count()));
+      auto pass_start = std::chrono::steady_clock::now();
+      renderer.trace(k);
+      glFinish();
+      // Grow the batch while a pass is short: fewer passes, same samples.
+      if (seconds_since(pass_start) < 0.25 && batch < 1024) batch *= 2;
+      elapsed = seconds_since(start);
+      if (interactive || elapsed - last_report >= 5.0) {
+        std::string line = o.seconds
+                               ? format_time_progress(elapsed, *o.seconds, renderer.sample_count())
+                               : format_progress(renderer.sample_count(), target, elapsed, "spp");
+        std::fprintf(stderr, interactive ? "\r%s\033[K" : "%s\n", line.c_str());
+        last_report = elapsed;
+      }
+    }
+    double total = seconds_since(start);
+    if (interactive) std::fputc('\n', stderr);
+
+    Image image;
+    if (std::filesystem::path(o.output).extension() == ".png") {
+      image = renderer.read_display();
+    } else {
+      image = renderer.read_accumulation();
+      for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
+    }
+    save_image(o.output, image);
+    double pixel_samples = double(renderer.sample_count()) * width * height;
+    std::fprintf(stderr, "glint: wrote %s (%dx%d, %lld spp, %.2f s, %.1f spp/s, %.2f Msamples/s)\n",
+                 o.output.c_str(), width, height, static_cast<long long>(renderer.sample_count()), total,
+                 renderer.sample_count() / total, pixel_samples / total * 1e-6);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint render: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace glint

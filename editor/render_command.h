@@ -1,0 +1,11 @@
+// `glint render`: headless final render of a project to PNG, HDR or EXR.
+#pragma once
+
+namespace glint {
+
+// argv excludes "glint" and "render". Returns the process exit code.
+int run_render_command(int argc, char** argv);
+
+const char* render_command_usage();
+
+}  // namespace glint

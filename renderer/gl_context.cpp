@@ -1,0 +1,122 @@
+#include "renderer/gl_context.h"
+
+#include <stdexcept>
+#include <vector>
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+namespace glint {
+namespace {
+
+// Tries to create and bind a 4.5 core context on `display`; returns the context or null.
+EGLContext make_context(EGLDisplay display, std::string& why) {
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) {
+    why = "eglInitialize failed";
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglBindAPI(EGL_OPENGL_API)) {
+    why = "no desktop OpenGL API";
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint count = 0;
+  if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
+    // Some device displays offer no configs; contexts without one still work there.
+    if (!epoxy_has_egl_extension(display, "EGL_KHR_no_config_context")) {
+      why = "no OpenGL-renderable EGL config";
+      eglTerminate(display);
+      return EGL_NO_CONTEXT;
+    }
+    config = EGL_NO_CONFIG_KHR;
+  }
+  // 4.5 exactly: Mesa refuses 4.6 on llvmpipe.
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+  if (context == EGL_NO_CONTEXT) {
+    why = "no OpenGL 4.5 core context (EGL error " + std::to_string(eglGetError()) + ")";
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+    why = "cannot make the context current without a surface";
+    eglDestroyContext(display, context);
+    eglTerminate(display);
+    return EGL_NO_CONTEXT;
+  }
+  return context;
+}
+
+}  // namespace
+
+std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create() {
+  std::string errors;
+  std::unique_ptr<HeadlessGLContext> result(new HeadlessGLContext());
+
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
+    EGLint n = 0;
+    eglQueryDevicesEXT(0, nullptr, &n);
+    std::vector<EGLDeviceEXT> devices(static_cast<size_t>(n));
+    if (n > 0) eglQueryDevicesEXT(n, devices.data(), &n);
+    for (EGLint i = 0; i < n; ++i) {
+      EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+      std::string why = "no display";
+      if (display != EGL_NO_DISPLAY) {
+        EGLContext context = make_context(display, why);
+        if (context != EGL_NO_CONTEXT) {
+          result->display_ = display;
+          result->context_ = context;
+          result->platform_ = "EGL device " + std::to_string(i);
+          return result;
+        }
+      }
+      errors += "  EGL device " + std::to_string(i) + ": " + why + "\n";
+    }
+    if (n == 0) errors += "  EGL device platform: no devices\n";
+  } else {
+    errors += "  EGL device platform: not supported\n";
+  }
+
+  if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    std::string why = "no display";
+    if (display != EGL_NO_DISPLAY) {
+      EGLContext context = make_context(display, why);
+      if (context != EGL_NO_CONTEXT) {
+        result->display_ = display;
+        result->context_ = context;
+        result->platform_ = "surfaceless";
+        return result;
+      }
+    }
+    errors += "  Mesa surfaceless: " + why + "\n";
+  } else {
+    errors += "  Mesa surfaceless platform: not supported\n";
+  }
+  throw std::runtime_error("cannot create a headless OpenGL 4.5 core context:\n" + errors);
+}
+
+HeadlessGLContext::~HeadlessGLContext() {
+  if (display_) {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    if (context_) eglDestroyContext(display_, context_);
+    eglTerminate(display_);
+  }
+}
+
+std::string gl_renderer_name() {
+  const GLubyte* s = glGetString(GL_RENDERER);
+  return s ? reinterpret_cast<const char*>(s) : "unknown";
+}
+
+std::string gl_version_string() {
+  const GLubyte* s = glGetString(GL_VERSION);
+  return s ? reinterpret_cast<const char*>(s) : "unknown";
+}
+
+}  // namespace glint

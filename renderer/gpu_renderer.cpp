@@ -1,0 +1,249 @@
+#include "renderer/gpu_renderer.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <vector>
+
+#include "renderer/camera_frame.h"
+#include "renderer/gl_program.h"
+#include "renderer/gpu_scene.h"
+
+namespace glint {
+namespace {
+
+// Uploads `data` into a shader storage buffer, never empty (a zero-size binding is invalid).
+template <typename T>
+void upload_storage(GLuint buffer, const std::vector<T>& data) {
+  std::vector<T> padded = data;
+  if (padded.empty()) padded.push_back(T{});
+  glNamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size() * sizeof(T)), padded.data(),
+                    GL_STATIC_DRAW);
+}
+
+GLuint make_texture_2d(GLenum internal_format, int width, int height) {
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &t);
+  glTextureStorage2D(t, 1, internal_format, width, height);
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+GLuint make_framebuffer(GLuint texture) {
+  GLuint fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
+  if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw std::runtime_error("incomplete framebuffer for the render target");
+  return fbo;
+}
+
+}  // namespace
+
+GpuRenderer::GpuRenderer() {
+  trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
+  tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(4, buffers_);
+}
+
+GpuRenderer::~GpuRenderer() {
+  resize(0, 0);
+  glDeleteBuffers(4, buffers_);
+  glDeleteVertexArrays(1, &vao_);
+  if (texture_array_) glDeleteTextures(1, &texture_array_);
+  if (environment_texture_) glDeleteTextures(1, &environment_texture_);
+}
+
+void GpuRenderer::resize(int width, int height) {
+  if (accumulation_[0]) {
+    glDeleteFramebuffers(2, accumulation_fbo_);
+    glDeleteTextures(2, accumulation_);
+    glDeleteFramebuffers(1, &display_fbo_);
+    glDeleteTextures(1, &display_texture_);
+    accumulation_[0] = accumulation_[1] = display_texture_ = 0;
+  }
+  width_ = width;
+  height_ = height;
+  if (width <= 0 || height <= 0) return;
+  for (int i = 0; i < 2; ++i) {
+    accumulation_[i] = make_texture_2d(GL_RGBA32F, width, height);
+    accumulation_fbo_[i] = make_framebuffer(accumulation_[i]);
+  }
+  display_texture_ = make_texture_2d(GL_RGBA8, width, height);
+  display_fbo_ = make_framebuffer(display_texture_);
+}
+
+SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
+  SceneDigests d = digest_scene(scene);
+  SyncResult result;
+  // Images first: if one fails to load, nothing has changed yet.
+  if (first_sync_ || d.textures != digests_.textures || d.materials != digests_.materials)
+    upload_textures(scene);
+  if (first_sync_ || d.environment != digests_.environment) upload_environment(scene);
+  if (first_sync_ || d.geometry != digests_.geometry || d.materials != digests_.materials)
+    upload_geometry(scene);
+  if (width != width_ || height != height_) {
+    resize(width, height);
+    result.accumulation_reset = true;
+  }
+  if (first_sync_ || d.radiance() != digests_.radiance()) result.accumulation_reset = true;
+  if (result.accumulation_reset) set_frame_uniforms(scene);  // the aspect ratio may have changed
+  if (first_sync_ || d.display != digests_.display) {
+    tonemap_program_->set("u_exposure", scene.display.exposure);
+    tonemap_program_->set("u_tonemap", scene.display.tonemap == Tonemap::filmic ? 0 : 1);
+    result.display_changed = true;
+    display_stale_ = true;
+  }
+  if (result.accumulation_reset) {
+    samples_ = 0;
+    display_stale_ = true;
+    const float zero[4] = {0, 0, 0, 0};
+    for (GLuint t : accumulation_)
+      if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+  }
+  digests_ = d;
+  first_sync_ = false;
+  return result;
+}
+
+void GpuRenderer::upload_geometry(const Scene& scene) {
+  PackedScene packed = pack_scene(scene);
+  upload_storage(buffers_[0], packed.spheres);
+  upload_storage(buffers_[1], packed.quads);
+  upload_storage(buffers_[2], packed.materials);
+  trace_program_->set("u_sphere_count", static_cast<int>(packed.spheres.size()));
+  trace_program_->set("u_quad_count", static_cast<int>(packed.quads.size()));
+}
+
+void GpuRenderer::upload_textures(const Scene& scene) {
+  PackedScene packed = pack_scene(scene);
+  std::vector<Image> images;
+  for (const TextureLayer& layer : packed.layers)
+    images.push_back(load_image(resolve_asset_path(scene, scene.textures[layer.texture].path),
+                                layer.encoding));
+  // One array sized to the largest texture; each layer records its own size and the shader
+  // filters by hand within it (textures of different sizes share the array).
+  int w = 1, h = 1;
+  for (const Image& img : images) {
+    w = std::max(w, img.width);
+    h = std::max(h, img.height);
+  }
+  std::vector<glm::ivec4> sizes;
+  if (texture_array_) glDeleteTextures(1, &texture_array_);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_array_);
+  glTextureStorage3D(texture_array_, 1, GL_RGBA32F, w, h, std::max<int>(1, images.size()));
+  for (size_t i = 0; i < images.size(); ++i) {
+    glTextureSubImage3D(texture_array_, 0, 0, 0, static_cast<GLint>(i), images[i].width,
+                        images[i].height, 1, GL_RGBA, GL_FLOAT, images[i].pixels.data());
+    sizes.emplace_back(images[i].width, images[i].height, 0, 0);
+  }
+  upload_storage(buffers_[3], sizes);
+}
+
+void GpuRenderer::upload_environment(const Scene& scene) {
+  const Environment& env = scene.environment;
+  Image image;
+  if (!env.texture.empty()) {
+    image = load_image(resolve_asset_path(scene, env.texture), ColorEncoding::linear);
+  } else {
+    image.width = image.height = 1;
+    image.pixels = {1, 1, 1, 1};
+  }
+  if (environment_texture_) glDeleteTextures(1, &environment_texture_);
+  glCreateTextures(GL_TEXTURE_2D, 1, &environment_texture_);
+  glTextureStorage2D(environment_texture_, 1, GL_RGBA32F, image.width, image.height);
+  glTextureSubImage2D(environment_texture_, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
+                      image.pixels.data());
+  glTextureParameteri(environment_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(environment_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void GpuRenderer::set_frame_uniforms(const Scene& scene) {
+  GlProgram& p = *trace_program_;
+  const Environment& env = scene.environment;
+  bool textured = !env.texture.empty();
+  p.set("u_env_color", textured ? glm::vec3(env.intensity) : env.color * env.intensity);
+  p.set("u_env_textured", textured ? 1 : 0);
+  p.set("u_env_rotation", glm::radians(env.rotation_deg));
+  p.set("u_max_bounces", scene.render.max_bounces);
+  p.set("u_seed", static_cast<unsigned>(scene.render.seed));
+  float aspect = height_ > 0 ? static_cast<float>(width_) / static_cast<float>(height_) : 1.0f;
+  gpu::CameraFrame cam = make_camera_frame(scene.camera, aspect);
+  p.set("u_cam_origin", cam.origin);
+  p.set("u_cam_right", cam.right);
+  p.set("u_cam_up", cam.up);
+  p.set("u_cam_forward", cam.forward);
+  p.set("u_cam_tan_half_vfov", cam.tan_half_vfov);
+  p.set("u_cam_aspect", cam.aspect);
+  p.set("u_cam_aperture", cam.aperture);
+  p.set("u_cam_focus", cam.focus);
+}
+
+void GpuRenderer::trace(int samples) {
+  if (samples <= 0 || width_ <= 0) return;
+  int next = 1 - current_;
+  GlProgram& p = *trace_program_;
+  p.set("u_resolution", glm::ivec2(width_, height_));
+  p.set("u_samples_before", static_cast<unsigned>(samples_));
+  p.set("u_samples_per_pass", samples);
+  glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[next]);
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(p.id());
+  for (GLuint i = 0; i < 4; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  glBindTextureUnit(0, accumulation_[current_]);
+  glBindTextureUnit(1, texture_array_);
+  glBindTextureUnit(2, environment_texture_);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  current_ = next;
+  samples_ += samples;
+  display_stale_ = true;
+}
+
+void GpuRenderer::update_display() {
+  if (!display_stale_ || width_ <= 0) return;
+  glBindFramebuffer(GL_FRAMEBUFFER, display_fbo_);
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(tonemap_program_->id());
+  glBindTextureUnit(0, accumulation_[current_]);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  display_stale_ = false;
+}
+
+Image GpuRenderer::read_accumulation() const {
+  Image image;
+  image.width = width_;
+  image.height = height_;
+  image.pixels.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);
+  if (samples_ > 0)
+    glGetTextureImage(accumulation_[current_], 0, GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(image.pixels.size() * sizeof(float)), image.pixels.data());
+  return image;
+}
+
+Image GpuRenderer::read_display() {
+  update_display();
+  Image image;
+  image.width = width_;
+  image.height = height_;
+  image.pixels.resize(static_cast<size_t>(width_) * height_ * 4);
+  glGetTextureImage(display_texture_, 0, GL_RGBA, GL_FLOAT,
+                    static_cast<GLsizei>(image.pixels.size() * sizeof(float)), image.pixels.data());
+  return image;
+}
+
+}  // namespace glint

@@ -1,0 +1,82 @@
+// The progressive GPU path tracer (DESIGN.md §2). Runs in any current OpenGL 4.5 core context.
+//
+// Per frame: sync(scene) compares digests and uploads only what changed, restarting the
+// accumulation when radiance inputs changed; trace(k) adds k samples per pixel into ping-pong
+// RGBA32F buffers; update_display() re-runs the tonemap pass when its inputs changed.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <epoxy/gl.h>
+
+#include "renderer/image.h"
+#include "renderer/scene.h"
+#include "renderer/scene_digest.h"
+
+namespace glint {
+
+class GlProgram;
+
+struct SyncResult {
+  bool accumulation_reset = false;  // radiance inputs or the resolution changed
+  bool display_changed = false;     // exposure or tonemap changed (no reset on its own)
+};
+
+class GpuRenderer {
+ public:
+  GpuRenderer();  // compiles the shaders; throws std::runtime_error with the driver's log
+  ~GpuRenderer();
+  GpuRenderer(const GpuRenderer&) = delete;
+  GpuRenderer& operator=(const GpuRenderer&) = delete;
+
+  // Brings the GPU state up to date with a validated scene rendered at width x height.
+  // Throws ImageError if a texture cannot be loaded; the previous state is then kept.
+  SyncResult sync(const Scene& scene, int width, int height);
+
+  // Adds `samples` samples to every pixel in one pass.
+  void trace(int samples);
+
+  // Re-runs the tonemap pass if the accumulation or the display settings changed since the
+  // last run. Never touches the accumulation.
+  void update_display();
+
+  int64_t sample_count() const { return samples_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  GLuint display_texture() const { return display_texture_; }
+
+  // Mean linear radiance per pixel (rgb) and the count of discarded non-finite samples (a).
+  Image read_accumulation() const;
+  // The tonemapped display image in [0,1] (calls update_display first).
+  Image read_display();
+
+ private:
+  void resize(int width, int height);
+  void upload_geometry(const Scene& scene);
+  void upload_textures(const Scene& scene);
+  void upload_environment(const Scene& scene);
+  void set_frame_uniforms(const Scene& scene);
+
+  std::unique_ptr<GlProgram> trace_program_;
+  std::unique_ptr<GlProgram> tonemap_program_;
+  GLuint vao_ = 0;
+  GLuint accumulation_[2] = {0, 0};
+  GLuint accumulation_fbo_[2] = {0, 0};
+  GLuint display_texture_ = 0;
+  GLuint display_fbo_ = 0;
+  GLuint buffers_[4] = {0, 0, 0, 0};  // spheres, quads, materials, layer sizes
+  GLuint texture_array_ = 0;
+  GLuint environment_texture_ = 0;
+
+  int current_ = 0;  // accumulation_[current_] holds the latest result
+  int width_ = 0;
+  int height_ = 0;
+  int64_t samples_ = 0;
+  bool display_stale_ = true;
+  bool first_sync_ = true;
+  SceneDigests digests_;
+};
+
+}  // namespace glint

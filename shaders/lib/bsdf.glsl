@@ -1,0 +1,138 @@
+// The four materials of DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel): evaluation,
+// sampling and pdf, consistent with each other. All directions are unit vectors in world
+// space; n is the shading normal already flipped to the side of wo. eval returns f |n.wi|.
+#ifndef GLINT_BSDF_GLSL
+#define GLINT_BSDF_GLSL
+
+const int MATERIAL_MATTE = 0;
+const int MATERIAL_REFLECTIVE = 1;
+const int MATERIAL_GLOSSY = 2;
+const int MATERIAL_TRANSPARENT = 3;
+
+// Below this roughness, reflective and transparent surfaces are perfectly smooth (delta).
+const float DELTA_ROUGHNESS = 0.03f;
+
+struct SurfaceMaterial {
+  int type;
+  vec3 color;
+  float roughness;
+  float ior;
+};
+
+struct BsdfSample {
+  vec3 wi;
+  vec3 weight;  // f |n.wi| / pdf, or the delta lobe's weight
+  float pdf;    // solid-angle pdf; 0 for delta lobes
+  bool delta;
+  bool valid;
+};
+
+bool is_delta_material(SurfaceMaterial m) {
+  return (m.type == MATERIAL_REFLECTIVE || m.type == MATERIAL_TRANSPARENT) &&
+         m.roughness < DELTA_ROUGHNESS;
+}
+
+float ggx_alpha(SurfaceMaterial m) {
+  float r = m.type == MATERIAL_GLOSSY ? max(m.roughness, DELTA_ROUGHNESS) : m.roughness;
+  return r * r;
+}
+
+vec3 mirror_through_plane(vec3 w, vec3 n) { return w - 2.0f * dot(n, w) * n; }
+
+// D G / (4 |n.wo| |n.wi|) |n.wi| for the half vector h of a reflection.
+float microfacet_reflection(float alpha, vec3 n, vec3 h, vec3 wo, vec3 wi) {
+  float cos_o = abs(dot(n, wo));
+  if (cos_o == 0.0f) return 0.0f;
+  return ggx_distribution(alpha, dot(n, h)) * smith_g1(alpha, dot(n, wo)) *
+         smith_g1(alpha, dot(n, wi)) / (4.0f * cos_o);
+}
+
+// pdf of wi when h is drawn with pdf D(h) (n.h) and wi = reflect(-wo, h).
+float microfacet_reflection_pdf(float alpha, vec3 n, vec3 h, vec3 wo) {
+  float cos_oh = abs(dot(wo, h));
+  if (cos_oh == 0.0f) return 0.0f;
+  float cos_h = dot(n, h);
+  return ggx_distribution(alpha, cos_h) * cos_h / (4.0f * cos_oh);
+}
+
+vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
+  if (is_delta_material(m)) return vec3(0.0f);
+  float cos_i = dot(n, wi);
+  float cos_o = dot(n, wo);
+  if (m.type == MATERIAL_MATTE) return cos_i > 0.0f ? m.color * (cos_i * INV_PI) : vec3(0.0f);
+  float alpha = ggx_alpha(m);
+  if (m.type == MATERIAL_REFLECTIVE) {
+    if (cos_i <= 0.0f) return vec3(0.0f);
+    vec3 h = normalize(wo + wi);
+    return fresnel_schlick(m.color, dot(h, wi)) * microfacet_reflection(alpha, n, h, wo, wi);
+  }
+  float f0 = dielectric_f0(m.ior);
+  if (m.type == MATERIAL_GLOSSY) {
+    if (cos_i <= 0.0f) return vec3(0.0f);
+    vec3 h = normalize(wo + wi);
+    float coat = fresnel_schlick(f0, dot(h, wi)) * microfacet_reflection(alpha, n, h, wo, wi);
+    vec3 base = m.color * ((1.0f - fresnel_schlick(f0, cos_o)) * INV_PI * cos_i);
+    return base + vec3(coat);
+  }
+  // Rough thin glass: reflection, or transmission mirrored through the surface plane.
+  if (cos_i > 0.0f) {
+    vec3 h = normalize(wo + wi);
+    return vec3(fresnel_schlick(f0, dot(h, wi)) * microfacet_reflection(alpha, n, h, wo, wi));
+  }
+  vec3 wr = mirror_through_plane(wi, n);
+  vec3 h = normalize(wo + wr);
+  return m.color * ((1.0f - fresnel_schlick(f0, dot(h, wo))) * microfacet_reflection(alpha, n, h, wo, wr));
+}
+
+float pdf_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
+  if (is_delta_material(m)) return 0.0f;
+  float cos_i = dot(n, wi);
+  if (m.type == MATERIAL_MATTE) return cos_i > 0.0f ? cos_i * INV_PI : 0.0f;
+  float alpha = ggx_alpha(m);
+  if (m.type == MATERIAL_REFLECTIVE) {
+    return cos_i > 0.0f ? microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo) : 0.0f;
+  }
+  float p_reflect = fresnel_schlick(dielectric_f0(m.ior), dot(n, wo));
+  if (m.type == MATERIAL_GLOSSY) {
+    if (cos_i <= 0.0f) return 0.0f;
+    return p_reflect * microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo) +
+           (1.0f - p_reflect) * cos_i * INV_PI;
+  }
+  if (cos_i > 0.0f) return p_reflect * microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo);
+  vec3 wr = mirror_through_plane(wi, n);
+  return (1.0f - p_reflect) * microfacet_reflection_pdf(alpha, n, normalize(wo + wr), wo);
+}
+
+// u_lobe picks a lobe, u drives the direction; both uniform in [0,1).
+BsdfSample sample_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, float u_lobe, vec2 u) {
+  BsdfSample invalid = BsdfSample(vec3(0.0f), vec3(0.0f), 0.0f, false, false);
+  float cos_o = dot(n, wo);
+  if (m.type == MATERIAL_REFLECTIVE && m.roughness < DELTA_ROUGHNESS) {
+    return BsdfSample(reflect(-wo, n), fresnel_schlick(m.color, cos_o), 0.0f, true, true);
+  }
+  float f0 = dielectric_f0(m.ior);
+  if (m.type == MATERIAL_TRANSPARENT && m.roughness < DELTA_ROUGHNESS) {
+    // Choosing reflection with probability F makes both weights free of F.
+    if (u_lobe < fresnel_schlick(f0, cos_o)) return BsdfSample(reflect(-wo, n), vec3(1.0f), 0.0f, true, true);
+    return BsdfSample(-wo, m.color, 0.0f, true, true);
+  }
+  mat3 frame = basis_from_normal(n);
+  vec3 wi;
+  if (m.type == MATERIAL_MATTE) {
+    wi = frame * sample_cosine_hemisphere(u);
+  } else if (m.type == MATERIAL_GLOSSY && u_lobe >= fresnel_schlick(f0, cos_o)) {
+    wi = frame * sample_cosine_hemisphere(u);
+  } else {
+    vec3 h = frame * sample_ggx_normal(ggx_alpha(m), u);
+    wi = reflect(-wo, h);
+    if (dot(n, wi) <= 0.0f) return invalid;
+    if (m.type == MATERIAL_TRANSPARENT && u_lobe >= fresnel_schlick(f0, cos_o)) {
+      wi = mirror_through_plane(wi, n);
+    }
+  }
+  float pdf = pdf_bsdf(m, n, wo, wi);
+  if (!(pdf > 0.0f)) return invalid;
+  return BsdfSample(wi, eval_bsdf(m, n, wo, wi) / pdf, pdf, false, true);
+}
+
+#endif
