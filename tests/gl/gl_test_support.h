@@ -1,0 +1,62 @@
+// Shared set-up for GL tests: one headless context per process, small scenes, image stats.
+#pragma once
+
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "renderer/gl_context.h"
+#include "renderer/gpu_renderer.h"
+#include "renderer/image.h"
+#include "renderer/scene.h"
+
+namespace glint::test {
+
+inline void ensure_gl_context() {
+  static std::unique_ptr<HeadlessGLContext> context = HeadlessGLContext::create();
+}
+
+// A camera looking down -Z at the origin from z = 5, with a black environment.
+inline Scene empty_scene() {
+  Scene s;
+  s.camera.position = {0, 0, 5};
+  s.camera.target = {0, 0, 0};
+  s.camera.up = {0, 1, 0};
+  s.environment.color = {0, 0, 0};
+  return s;
+}
+
+struct Stats {
+  double mean = 0;
+  double variance = 0;  // of the per-pixel values
+  int count = 0;
+};
+
+// Statistics of channel c over the pixels where `use(x, y)` is true.
+template <typename Pred>
+Stats channel_stats(const Image& img, int c, Pred use) {
+  Stats s;
+  double sum = 0, sum2 = 0;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x)
+      if (use(x, y)) {
+        double v = img.at(x, y)[c];
+        sum += v;
+        sum2 += v * v;
+        ++s.count;
+      }
+  if (s.count > 0) {
+    s.mean = sum / s.count;
+    s.variance = std::max(0.0, sum2 / s.count - s.mean * s.mean);
+  }
+  return s;
+}
+
+inline bool all_finite(const Image& img) {
+  for (float v : img.pixels)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+}  // namespace glint::test
