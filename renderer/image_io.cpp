@@ -1,0 +1,471 @@
+// Image readers and writers (see image.h). stb_image handles PNG/JPG/HDR (and the other formats
+// it knows), tinyexr handles OpenEXR. Both libraries are linked as shared objects that already
+// contain their implementations, so no *_IMPLEMENTATION macro is defined here.
+#include "renderer/image.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <system_error>
+
+#include <unistd.h>
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+namespace glint {
+namespace {
+
+// Larger images are refused before any pixel memory is allocated: a corrupt or hostile header
+// must not make us allocate gigabytes.
+constexpr int kMaxDimension = 16384;
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& problem) {
+  throw ImageError(path.string() + ": " + problem);
+}
+
+void check_dimensions(const std::filesystem::path& path, int width, int height) {
+  if (width <= 0 || height <= 0)
+    fail(path, "invalid image size " + std::to_string(width) + "x" + std::to_string(height));
+  if (width > kMaxDimension || height > kMaxDimension)
+    fail(path, "image is too large (" + std::to_string(width) + "x" + std::to_string(height) +
+                   ", the limit is " + std::to_string(kMaxDimension) + " per side)");
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::vector<unsigned char> read_file(const std::filesystem::path& path, size_t max_bytes) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail(path, "file not found");
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, std::string("cannot open file: ") + std::strerror(errno));
+  std::vector<unsigned char> bytes;
+  char buffer[65536];
+  while (bytes.size() < max_bytes) {
+    in.read(buffer, static_cast<std::streamsize>(std::min(sizeof buffer, max_bytes - bytes.size())));
+    bytes.insert(bytes.end(), buffer, buffer + in.gcount());
+    if (in.gcount() == 0) break;
+  }
+  if (in.bad()) fail(path, "read error");
+  if (bytes.empty()) fail(path, "file is empty");
+  return bytes;
+}
+
+enum class Format { png, jpeg, radiance, openexr };
+
+// The formats of image.h, told apart by their signatures. stb knows more formats (TGA, PSD,
+// PIC, ...) but they are neither needed nor as well exercised on broken input, so they are
+// refused rather than half-supported.
+std::optional<Format> sniff_format(const std::vector<unsigned char>& bytes) {
+  auto starts_with = [&](std::string_view magic) {
+    return bytes.size() >= magic.size() &&
+           std::equal(magic.begin(), magic.end(), bytes.begin(),
+                      [](char a, unsigned char b) { return static_cast<unsigned char>(a) == b; });
+  };
+  if (starts_with("\x89PNG\r\n\x1a\n")) return Format::png;
+  if (starts_with("\xff\xd8\xff")) return Format::jpeg;
+  if (starts_with("#?RADIANCE\n") || starts_with("#?RGBE\n")) return Format::radiance;
+  if (starts_with(std::string_view("\x76\x2f\x31\x01", 4))) return Format::openexr;
+  return std::nullopt;
+}
+
+Format require_format(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  const std::optional<Format> format = sniff_format(bytes);
+  if (!format) fail(path, "not an image in a supported format (PNG, JPEG, Radiance HDR, OpenEXR)");
+  return *format;
+}
+
+// stb's decoders do not fail at the end of their input: they read zeros instead, so a truncated
+// file can "load" with garbage, and the run-length .hdr decoder even loops forever on zeros
+// (a zero run length makes no progress). So stb reads through these callbacks, which
+//  - record whether it ever asked for bytes past the end (a valid file never does): a read that
+//    finds nothing left, or a short answer to a direct read (stb_image reads exactly what it
+//    needs directly, but refills its 128-byte buffer with whatever is left), and
+//  - answer such reads with a bounded amount of 0xFF filler, on which every stb decoder makes
+//    progress or fails (0xFF is a run of 127 in .hdr), before reporting a real end of file.
+struct StbSource {
+  static constexpr int kStbBufferSize = 128;  // stbi__context::buffer_start
+  const unsigned char* data = nullptr;
+  size_t size = 0;
+  size_t pos = 0;
+  size_t filler_left = 0;
+  bool overrun = false;
+
+  static int read(void* user, char* out, int count) {
+    auto* s = static_cast<StbSource*>(user);
+    if (count <= 0) return 0;
+    size_t n = std::min(static_cast<size_t>(count), s->size - s->pos);
+    std::memcpy(out, s->data + s->pos, n);
+    s->pos += n;
+    if (n < static_cast<size_t>(count) && count != kStbBufferSize) s->overrun = true;
+    if (n == 0) {
+      s->overrun = true;
+      n = std::min(static_cast<size_t>(count), s->filler_left);
+      std::memset(out, 0xff, n);
+      s->filler_left -= n;
+    }
+    return static_cast<int>(n);
+  }
+  static void skip(void* user, int count) {
+    auto* s = static_cast<StbSource*>(user);
+    if (count > 0 && static_cast<size_t>(count) > s->size - s->pos) {
+      s->overrun = true;
+      s->pos = s->size;
+    } else if (count < 0 && static_cast<size_t>(-static_cast<long long>(count)) > s->pos) {
+      s->pos = 0;  // stb never skips backwards past the start; be safe anyway
+    } else {
+      s->pos = static_cast<size_t>(static_cast<long long>(s->pos) + count);
+    }
+  }
+  static int eof(void* user) {
+    auto* s = static_cast<StbSource*>(user);
+    return s->pos >= s->size;
+  }
+  static constexpr stbi_io_callbacks callbacks{&read, &skip, &eof};
+
+  // `filler` bounds the bytes handed out past the end: enough for a decoder to run through
+  // every remaining pixel (a few bytes each), so that it finishes instead of looping.
+  StbSource(const std::vector<unsigned char>& bytes, size_t filler)
+      : data(bytes.data()), size(bytes.size()), filler_left(filler) {}
+};
+
+std::string stb_reason() {
+  const char* reason = stbi_failure_reason();
+  return reason ? reason : "unknown error";
+}
+
+struct StbInfo {
+  int width = 0, height = 0, channels = 0;
+  bool is_hdr = false, is_16_bit = false;
+};
+
+StbInfo stb_info(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  constexpr size_t kFiller = 65536;
+  StbInfo info;
+  StbSource source(bytes, kFiller);
+  const bool ok = stbi_info_from_callbacks(&StbSource::callbacks, &source, &info.width,
+                                           &info.height, &info.channels) != 0;
+  if (source.overrun) fail(path, "file is truncated (incomplete image header)");
+  if (!ok) fail(path, "not a readable image (" + stb_reason() + ")");
+  StbSource hdr(bytes, kFiller);
+  info.is_hdr = stbi_is_hdr_from_callbacks(&StbSource::callbacks, &hdr) != 0;
+  StbSource deep(bytes, kFiller);
+  info.is_16_bit = stbi_is_16_bit_from_callbacks(&StbSource::callbacks, &deep) != 0;
+  return info;
+}
+
+// Exact sRGB decode of each 8-bit value (a table: it is used for every texel).
+const std::array<float, 256>& srgb_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(static_cast<float>(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+// Expands 1-4 channel data to RGBA; `convert(value, is_alpha)` maps a stored sample to linear.
+template <typename T, typename Convert>
+Image expand_to_rgba(const T* data, int width, int height, int channels, Convert convert) {
+  Image image;
+  image.width = width;
+  image.height = height;
+  const size_t count = static_cast<size_t>(width) * height;
+  image.pixels.resize(count * 4);
+  for (size_t i = 0; i < count; ++i) {
+    const T* in = data + i * channels;
+    float* out = &image.pixels[i * 4];
+    if (channels <= 2) {
+      out[0] = out[1] = out[2] = convert(in[0], false);
+    } else {
+      for (int c = 0; c < 3; ++c) out[c] = convert(in[c], false);
+    }
+    out[3] = (channels == 2 || channels == 4) ? convert(in[channels - 1], true) : 1.0f;
+  }
+  return image;
+}
+
+// Runs one stb loader (8-bit, 16-bit or float) and expands its result to linear RGBA.
+template <typename T, typename Load, typename Convert>
+Image decode_stb(const std::filesystem::path& path, StbSource& source, Load load,
+                 Convert convert) {
+  int width = 0, height = 0, channels = 0;
+  // Native channel count (desired 0): grey and grey+alpha are expanded here, not by stb.
+  std::unique_ptr<T, decltype(&stbi_image_free)> data(
+      load(&StbSource::callbacks, &source, &width, &height, &channels, 0), &stbi_image_free);
+  if (!data) fail(path, "cannot decode image (" + stb_reason() + ")");
+  if (source.overrun) fail(path, "file is truncated");
+  check_dimensions(path, width, height);
+  if (channels < 1 || channels > 4) fail(path, "unsupported channel count");
+  return expand_to_rgba(data.get(), width, height, channels, convert);
+}
+
+Image load_stb(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+               ColorEncoding encoding) {
+  const StbInfo info = stb_info(path, bytes);
+  check_dimensions(path, info.width, info.height);
+  // Only the .hdr decoder needs filler to finish (at most 4 bytes per pixel).
+  StbSource source(bytes, info.is_hdr ? 4 * static_cast<size_t>(info.width) * info.height : 0);
+  if (info.is_hdr)
+    return decode_stb<float>(path, source, stbi_loadf_from_callbacks,
+                             [](float v, bool) { return v; });
+  if (info.is_16_bit)
+    return decode_stb<stbi_us>(path, source, stbi_load_16_from_callbacks,
+                               [](stbi_us v, bool) { return static_cast<float>(v) / 65535.0f; });
+  const auto& table = srgb_table();
+  const bool srgb = encoding == ColorEncoding::srgb;
+  return decode_stb<stbi_uc>(path, source, stbi_load_from_callbacks, [&](stbi_uc v, bool alpha) {
+    return srgb && !alpha ? table[v] : static_cast<float>(v) / 255.0f;
+  });
+}
+
+// --- OpenEXR -----------------------------------------------------------------------------------
+
+// Owns a parsed tinyexr header and image so that every exit path frees them.
+struct ExrFile {
+  EXRVersion version{};
+  EXRHeader header{};
+  EXRImage image{};
+  bool image_loaded = false;
+  ExrFile() {
+    InitEXRHeader(&header);
+    InitEXRImage(&image);
+  }
+  ~ExrFile() {
+    if (image_loaded) FreeEXRImage(&image);
+    FreeEXRHeader(&header);
+  }
+  ExrFile(const ExrFile&) = delete;
+  ExrFile& operator=(const ExrFile&) = delete;
+};
+
+std::string take_exr_error(const char* err, int code) {
+  std::string message = err ? err : "error code " + std::to_string(code);
+  if (err) FreeEXRErrorMessage(err);
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  return message;
+}
+
+void parse_exr_header(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+                      ExrFile& exr) {
+  int ret = ParseEXRVersionFromMemory(&exr.version, bytes.data(), bytes.size());
+  if (ret != TINYEXR_SUCCESS) fail(path, "not a readable OpenEXR file (bad version field)");
+  if (exr.version.multipart || exr.version.non_image)
+    fail(path, "multi-part and deep OpenEXR files are not supported");
+  const char* err = nullptr;
+  ret = ParseEXRHeaderFromMemory(&exr.header, &exr.version, bytes.data(), bytes.size(), &err);
+  if (ret != TINYEXR_SUCCESS) fail(path, "bad OpenEXR header (" + take_exr_error(err, ret) + ")");
+  const EXRBox2i& box = exr.header.data_window;
+  // 64-bit arithmetic: the window corners come straight from the file.
+  const long long w = static_cast<long long>(box.max_x) - box.min_x + 1;
+  const long long h = static_cast<long long>(box.max_y) - box.min_y + 1;
+  check_dimensions(path, static_cast<int>(std::clamp<long long>(w, -1, kMaxDimension + 1)),
+                   static_cast<int>(std::clamp<long long>(h, -1, kMaxDimension + 1)));
+}
+
+Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  ExrFile exr;
+  parse_exr_header(path, bytes, exr);
+  EXRHeader& header = exr.header;
+  int index[4] = {-1, -1, -1, -1};  // R, G, B, A
+  int luminance = -1;
+  for (int c = 0; c < header.num_channels; ++c) {
+    const EXRChannelInfo& channel = header.channels[c];
+    if (channel.x_sampling != 1 || channel.y_sampling != 1)
+      fail(path, "sub-sampled OpenEXR channels are not supported");
+    const std::string name = channel.name;
+    if (name == "R") index[0] = c;
+    if (name == "G") index[1] = c;
+    if (name == "B") index[2] = c;
+    if (name == "A") index[3] = c;
+    if (name == "Y") luminance = c;
+    // Everything is read as float; UINT channels cannot be converted by tinyexr.
+    if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
+      header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    else if (header.pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
+      fail(path, "integer OpenEXR channel '" + name + "' is not supported");
+  }
+  // A single channel of any name, or Y, is grey.
+  if (header.num_channels == 1 && luminance < 0) luminance = 0;
+  if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
+    if (luminance < 0) fail(path, "OpenEXR file has neither R, G, B nor a single grey channel");
+    index[0] = index[1] = index[2] = luminance;
+  }
+
+  // tinyexr frees a half-decoded image itself when decoding fails, but only the channels that
+  // exr.image.num_channels counts, which it sets on success: preset it so that nothing leaks.
+  exr.image.num_channels = header.num_channels;
+  const char* err = nullptr;
+  const int ret = LoadEXRImageFromMemory(&exr.image, &header, bytes.data(), bytes.size(), &err);
+  if (ret != TINYEXR_SUCCESS) fail(path, "cannot decode OpenEXR data (" + take_exr_error(err, ret) + ")");
+  exr.image_loaded = true;
+
+  Image image;
+  image.width = exr.image.width;
+  image.height = exr.image.height;
+  check_dimensions(path, image.width, image.height);
+  image.pixels.assign(static_cast<size_t>(image.width) * image.height * 4, 1.0f);
+  // Copies one block of rows/tiles: `channels[c]` holds block_w x block_h floats.
+  auto copy_block = [&](unsigned char** channels, int x0, int y0, int block_w, int block_h) {
+    for (int y = 0; y < block_h && y0 + y < image.height; ++y)
+      for (int x = 0; x < block_w && x0 + x < image.width; ++x) {
+        float* out = image.at(x0 + x, y0 + y);
+        const size_t src = static_cast<size_t>(y) * block_w + x;
+        for (int c = 0; c < 4; ++c)
+          if (index[c] >= 0) out[c] = reinterpret_cast<const float*>(channels[index[c]])[src];
+      }
+  };
+  if (header.tiled) {
+    if (!exr.image.tiles) fail(path, "OpenEXR file has no tiles");
+    for (int t = 0; t < exr.image.num_tiles; ++t) {
+      const EXRTile& tile = exr.image.tiles[t];
+      // The tile buffers are tile_size_x wide even when the tile is clipped at the border.
+      copy_block(tile.images, tile.offset_x * header.tile_size_x,
+                 tile.offset_y * header.tile_size_y, header.tile_size_x,
+                 std::min(tile.height, header.tile_size_y));
+    }
+  } else {
+    if (!exr.image.images) fail(path, "OpenEXR file has no pixel data");
+    copy_block(exr.image.images, 0, 0, image.width, image.height);
+  }
+  return image;
+}
+
+ImageInfo probe_bytes(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+                      Format format) {
+  if (format == Format::openexr) {
+    ExrFile exr;
+    parse_exr_header(path, bytes, exr);  // also checks the size
+    const EXRBox2i& box = exr.header.data_window;
+    return {box.max_x - box.min_x + 1, box.max_y - box.min_y + 1, exr.header.num_channels, true};
+  }
+  const StbInfo stb = stb_info(path, bytes);
+  check_dimensions(path, stb.width, stb.height);
+  return {stb.width, stb.height, stb.channels, stb.is_hdr || stb.is_16_bit};
+}
+
+// --- writing -----------------------------------------------------------------------------------
+
+// A unique sibling of `path` that the writers fill before it is renamed over `path`, so that a
+// failed or interrupted save never leaves a half-written image behind.
+std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
+  static std::atomic<unsigned> counter{0};
+  std::filesystem::path tmp = path;
+  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  return tmp;
+}
+
+}  // namespace
+
+float srgb_to_linear(float c) {
+  if (c <= 0.04045f) return c / 12.92f;
+  return std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float c) {
+  if (c <= 0.0031308f) return c * 12.92f;
+  return 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+ImageInfo probe_image(const std::filesystem::path& path) {
+  // Headers sit at the start of the file: read a prefix, and all of it only when the header
+  // does not fit (an EXR with many attributes, a JPEG with large EXIF or ICC blocks).
+  constexpr size_t kPrefix = 65536;
+  std::vector<unsigned char> bytes = read_file(path, kPrefix);
+  const Format format = require_format(path, bytes);
+  if (bytes.size() == kPrefix) {
+    try {
+      return probe_bytes(path, bytes, format);
+    } catch (const ImageError&) {
+      bytes = read_file(path, std::numeric_limits<int>::max());
+    }
+  }
+  return probe_bytes(path, bytes, format);
+}
+
+Image load_image(const std::filesystem::path& path, ColorEncoding encoding) {
+  // stb takes an int length, so files of 2 GiB or more are refused up front.
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size >= static_cast<uintmax_t>(std::numeric_limits<int>::max()))
+    fail(path, "file is too large");
+  const std::vector<unsigned char> bytes = read_file(path, std::numeric_limits<int>::max());
+  if (require_format(path, bytes) == Format::openexr) return load_exr(path, bytes);
+  return load_stb(path, bytes, encoding);
+}
+
+void save_image(const std::filesystem::path& path, const Image& image) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".png" && ext != ".hdr" && ext != ".exr")
+    fail(path, "unknown image extension '" + ext + "' (use .png, .hdr or .exr)");
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
+    fail(path, "cannot save an empty or inconsistent image");
+  const int w = image.width, h = image.height;
+  const size_t count = static_cast<size_t>(w) * h;
+  const std::filesystem::path tmp = temporary_sibling(path);
+  const std::string tmp_name = tmp.string();
+  bool ok = false;
+  std::string problem = "cannot write file";
+
+  if (ext == ".png") {
+    // RGB when the image is opaque (smaller files), RGBA otherwise.
+    bool has_alpha = false;
+    for (size_t i = 0; i < count && !has_alpha; ++i) has_alpha = image.pixels[i * 4 + 3] < 1.0f;
+    const int comp = has_alpha ? 4 : 3;
+    std::vector<unsigned char> bytes(count * comp);
+    for (size_t i = 0; i < count; ++i)
+      for (int c = 0; c < comp; ++c) {
+        const float v = image.pixels[i * 4 + c];
+        // NaN fails the comparison and becomes 0.
+        const float clamped = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
+        bytes[i * comp + c] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
+      }
+    ok = stbi_write_png(tmp_name.c_str(), w, h, comp, bytes.data(), w * comp) != 0;
+  } else if (ext == ".hdr") {
+    // RGBE stores neither negative nor non-finite values, and its exponent tops out near 1e38.
+    std::vector<float> rgb(count * 3);
+    for (size_t i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) {
+        const float v = image.pixels[i * 4 + c];
+        rgb[i * 3 + c] = v > 0.0f ? std::min(v, 1e38f) : 0.0f;
+      }
+    ok = stbi_write_hdr(tmp_name.c_str(), w, h, 3, rgb.data()) != 0;
+  } else {
+    const char* err = nullptr;
+    const int ret = SaveEXR(image.pixels.data(), w, h, 4, /*save_as_fp16=*/0, tmp_name.c_str(), &err);
+    ok = ret == TINYEXR_SUCCESS;
+    if (!ok) problem = "cannot write OpenEXR file (" + take_exr_error(err, ret) + ")";
+  }
+
+  std::error_code ec;
+  if (!ok) {
+    std::filesystem::remove(tmp, ec);
+    fail(path, problem);
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    fail(path, "cannot replace file: " + ec.message());
+  }
+}
+
+}  // namespace glint
