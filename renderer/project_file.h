@@ -13,8 +13,9 @@
 
 namespace glint {
 
-// One problem found in a project. message() reads "FILE: JSON_PATH: PROBLEM",
-// e.g. "scenes/a.glint: spheres[3].radius: must be greater than 0 (got -1)".
+// One problem found in a project. what() reads "FILE: JSON_PATH: PROBLEM",
+// e.g. "scenes/a.glint: spheres[3].radius: must be greater than 0 (got -1)"; an empty file or
+// path is left out with its ": " (validate_scene's errors read "JSON_PATH: PROBLEM").
 struct ProjectError : std::runtime_error {
   ProjectError(std::string file, std::string json_path, std::string problem);
   std::string file;
@@ -29,18 +30,39 @@ Scene load_project(const std::filesystem::path& file);
 // Parses a JSON document as a scene (unknown keys, wrong types, bad values are errors).
 // `file_label` only names the source in errors. Image files are checked for existence and
 // readability (relative to base_dir) when check_files is true.
+// "format": "glint-project" and "version": 1 are required. Validates like validate_scene.
 Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
                       const std::filesystem::path& base_dir, bool check_files = true);
+// The same for a document that keeps its key order (errors then follow the document's order).
+Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file_label,
+                      const std::filesystem::path& base_dir, bool check_files = true);
 
-// The canonical JSON of a scene: every key written, floats in their shortest exact form.
-nlohmann::json scene_to_json(const Scene& scene);
+// The canonical JSON of a scene: every key written, in the order of DESIGN.md's example (hence
+// ordered_json; it converts to nlohmann::json implicitly), null for empty texture references,
+// floats in their shortest exact form (0.1f as 0.1, 40.0f as 40), integers as integers.
+// Non-finite floats (which validate_scene rejects) become null.
+nlohmann::ordered_json scene_to_json(const Scene& scene);
+
+// The exact text save_project writes for a scene that stays in scene.base_dir: 2-space indent,
+// arrays of numbers on one line ("position": [0, 1, 5]), a trailing newline.
+std::string project_file_text(const Scene& scene);
+
+// The scene with base_dir set to new_base_dir and its relative asset paths (textures[].path,
+// environment.texture) rewritten to point at the same files from there; absolute paths are
+// kept. When both folders are the same (after resolving symlinks) the paths are kept verbatim.
+// The editor's "Save As" applies this to its document after save_project.
+Scene rebase_asset_paths(const Scene& scene, const std::filesystem::path& new_base_dir);
 
 // Validates a scene as the loader would (used after edits through the UI or the API).
-// Returns the problems as ProjectErrors with an empty file name; empty when valid.
+// Returns the problems as ProjectErrors with an empty file name; empty when valid. A quad has
+// zero area when either triangle's |cross(e1, e2)| <= 1e-12 * scale^2 (scale: the largest
+// distance between two corners); camera.up is parallel when |sin| of its angle <= 1e-6.
 std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files = true);
 
-// Writes atomically. Relative asset paths are rewritten relative to the new file's folder when
-// it differs from scene.base_dir. Throws ProjectError (with the file name) on IO failure.
+// Writes atomically: FILE.tmp beside the target, fsync, then rename over the target. Relative
+// asset paths are rewritten relative to the new file's folder when it differs from
+// scene.base_dir. Does not validate (the UI validates edits; the loader reports anything bad).
+// Throws ProjectError (with the file name) on IO failure; no FILE.tmp is left behind.
 void save_project(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace glint

@@ -1,0 +1,89 @@
+// Building blocks of the project file parser and writer: typed field readers that report
+// problems as ProjectError with a JSON path ("camera.position[1]: expected a number, got
+// string \"x\""), exact float <-> JSON conversion, duplicate-key-aware parsing and the
+// pretty printer. Internal to renderer/; the public API is project_file.h.
+#pragma once
+
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "renderer/project_file.h"
+
+namespace glint::json_fields {
+
+using Json = nlohmann::ordered_json;  // keeps keys in document / writing order
+
+// "camera" + "up" -> "camera.up"; "" + "camera" -> "camera"; "spheres" + 3 -> "spheres[3]".
+std::string child_path(const std::string& path, std::string_view key);
+std::string index_path(const std::string& path, size_t index);
+
+// A short description of a value for error messages: "string \"abc\"", "number 1.5", "null".
+std::string describe(const Json& value);
+
+// The shortest text that reads back as the same float ("0.1" for 0.1f; "nan", "inf").
+std::string float_text(float value);
+
+[[noreturn]] void fail(const std::string& file, const std::string& path, std::string problem);
+
+// Readers of single values; `path` names the value in errors.
+float read_float(const Json& value, const std::string& file, const std::string& path);
+glm::vec2 read_vec2(const Json& value, const std::string& file, const std::string& path);
+glm::vec3 read_vec3(const Json& value, const std::string& file, const std::string& path);
+// An integer (not a float with an integral value) in [min, max].
+int64_t read_integer(const Json& value, int64_t min, int64_t max, const std::string& file,
+                     const std::string& path);
+std::string read_string(const Json& value, const std::string& file, const std::string& path);
+
+// "must be an integer in [1, 16384] (got 0)": shared by the parser and validate_scene.
+std::string integer_range_problem(int64_t min, int64_t max, const std::string& got);
+
+// The fields of one JSON object. The constructor rejects non-objects and unknown keys.
+// Every reader leaves `out` unchanged when the key is absent (the scene.h default).
+class ObjectReader {
+ public:
+  ObjectReader(const Json& object, std::string path, const std::string& file,
+               std::initializer_list<std::string_view> allowed_keys);
+
+  const Json* find(std::string_view key) const;  // nullptr when absent
+  void require(std::string_view key) const;      // throws "missing required key"
+  std::string path(std::string_view key) const { return child_path(path_, key); }
+
+  void read(std::string_view key, float& out) const;
+  void read(std::string_view key, glm::vec3& out) const;
+  void read(std::string_view key, std::string& out) const;
+  // A texture name or file: a non-empty string, or null for none (stored as "").
+  void read_optional_string(std::string_view key, std::string& out) const;
+  template <class Int>
+  void read_integer(std::string_view key, int64_t min, int64_t max, Int& out) const {
+    if (const Json* v = find(key))
+      out = static_cast<Int>(json_fields::read_integer(*v, min, max, file_, path(key)));
+  }
+  // The array under `key`, or nullptr when absent; anything else than an array is an error.
+  const Json* array(std::string_view key) const;
+
+ private:
+  const Json& object_;
+  std::string path_;
+  const std::string& file_;
+};
+
+// A float as JSON: the value of its shortest round-trip text (std::to_chars), stored as an
+// integer when that text is one (40, not 40.0) and otherwise as a double (0.1f -> 0.1, not
+// 0.10000000149011612). Reading it back as a float is exact (checked for every finite float).
+Json float_to_json(float value);
+Json vec_to_json(glm::vec2 v);
+Json vec_to_json(glm::vec3 v);
+
+// Parses JSON text; a syntax error or a duplicate key in an object throws ProjectError.
+Json parse_text(const std::string& text, const std::string& file);
+
+// 2-space indented JSON with a trailing newline; arrays of numbers (and arrays of those) stay
+// on one line: "position": [0, 1, 5]. Throws nlohmann::json::type_error on invalid UTF-8.
+std::string pretty_print(const Json& doc);
+
+}  // namespace glint::json_fields

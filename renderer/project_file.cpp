@@ -1,0 +1,537 @@
+#include "renderer/project_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include "renderer/image.h"
+#include "renderer/json_fields.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+using json_fields::Json;
+using json_fields::ObjectReader;
+using json_fields::child_path;
+using json_fields::float_text;
+using json_fields::index_path;
+
+namespace {
+
+std::string error_message(const std::string& file, const std::string& path,
+                          const std::string& problem) {
+  std::string message;
+  for (const std::string* part : {&file, &path})
+    if (!part->empty()) message += *part + ": ";
+  return message + problem;
+}
+
+// ---- Parsing: structure and types. Values are checked afterwards by validate_scene. ----
+
+constexpr int kMaxFilmSize = 16384;
+constexpr int kMaxBounces = 1024;
+
+Camera parse_camera(const Json& j, const std::string& file) {
+  ObjectReader r(j, "camera", file,
+                 {"position", "target", "up", "vfov_deg", "aperture_radius", "focus_distance"});
+  Camera c;
+  r.read("position", c.position);
+  r.read("target", c.target);
+  r.read("up", c.up);
+  r.read("vfov_deg", c.vfov_deg);
+  r.read("aperture_radius", c.aperture_radius);
+  r.read("focus_distance", c.focus_distance);
+  return c;
+}
+
+Texture parse_texture(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file, {"name", "path"});
+  r.require("name");
+  r.require("path");
+  Texture t;
+  r.read("name", t.name);
+  r.read("path", t.path);
+  return t;
+}
+
+Material parse_material(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file,
+                 {"name", "type", "color", "color_texture", "emission", "emission_texture",
+                  "roughness", "roughness_texture", "ior", "opacity"});
+  r.require("name");
+  Material m;
+  r.read("name", m.name);
+  if (const Json* type = r.find("type")) {
+    const std::string text = json_fields::read_string(*type, file, r.path("type"));
+    const auto parsed = material_type_from_string(text);
+    if (!parsed)
+      json_fields::fail(file, r.path("type"),
+                        "unknown material type " + Json(text).dump() +
+                            " (expected matte, reflective, glossy or transparent)");
+    m.type = *parsed;
+  }
+  r.read("color", m.color);
+  r.read_optional_string("color_texture", m.color_texture);
+  r.read("emission", m.emission);
+  r.read_optional_string("emission_texture", m.emission_texture);
+  r.read("roughness", m.roughness);
+  r.read_optional_string("roughness_texture", m.roughness_texture);
+  r.read("ior", m.ior);
+  r.read("opacity", m.opacity);
+  return m;
+}
+
+Sphere parse_sphere(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file, {"name", "center", "radius", "material"});
+  r.require("center");
+  r.require("radius");
+  r.require("material");
+  Sphere s;
+  r.read("name", s.name);
+  r.read("center", s.center);
+  r.read("radius", s.radius);
+  r.read("material", s.material);
+  return s;
+}
+
+Quad parse_quad(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file, {"name", "material", "corners", "uvs"});
+  r.require("material");
+  r.require("corners");
+  Quad q;
+  r.read("name", q.name);
+  r.read("material", q.material);
+  auto read_rows = [&](const char* key, auto& out, auto read_row) {
+    const Json* rows = r.find(key);
+    if (!rows) return;
+    if (!rows->is_array() || rows->size() != out.size())
+      json_fields::fail(file, r.path(key), "expected an array of 4 points, got " +
+                                               json_fields::describe(*rows));
+    for (size_t i = 0; i < out.size(); ++i)
+      out[i] = read_row((*rows)[i], file, index_path(r.path(key), i));
+  };
+  read_rows("corners", q.corners, json_fields::read_vec3);
+  read_rows("uvs", q.uvs, json_fields::read_vec2);
+  return q;
+}
+
+// Reads the array under `key` of the root object, one element at a time.
+template <class T, class Parse>
+void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out, Parse parse,
+                const std::string& file) {
+  if (const Json* items = root.array(key))
+    for (size_t i = 0; i < items->size(); ++i)
+      out.push_back(parse((*items)[i], index_path(key, i), file));
+}
+
+// ---- Validation: values and references of a complete scene. ----
+
+class Checker {
+ public:
+  Checker(const Scene& scene, bool check_files) : scene_(scene), check_files_(check_files) {}
+  std::vector<ProjectError> problems;
+
+  void add(std::string path, std::string problem) {
+    problems.emplace_back("", std::move(path), std::move(problem));
+  }
+  bool finite(const std::string& path, float v) {
+    if (!std::isfinite(v)) add(path, "must be a finite number (got " + float_text(v) + ")");
+    return std::isfinite(v);
+  }
+  template <int N>
+  bool finite(const std::string& path, glm::vec<N, float> v) {
+    bool ok = true;
+    for (int i = 0; i < N; ++i) ok = finite(index_path(path, i), v[i]) && ok;
+    return ok;
+  }
+  void at_least(const std::string& path, float v, float min) {
+    if (finite(path, v) && !(v >= min))
+      add(path, "must be at least " + float_text(min) + " (got " + float_text(v) + ")");
+  }
+  void greater_than(const std::string& path, float v, float min) {
+    if (finite(path, v) && !(v > min))
+      add(path, "must be greater than " + float_text(min) + " (got " + float_text(v) + ")");
+  }
+  void in_unit_interval(const std::string& path, float v) {
+    if (finite(path, v) && !(v >= 0 && v <= 1))
+      add(path, "must be in [0, 1] (got " + float_text(v) + ")");
+  }
+  void non_negative(const std::string& path, glm::vec3 v) {
+    for (int i = 0; i < 3; ++i) at_least(index_path(path, i), v[i], 0);
+  }
+  void integer_in(const std::string& path, int64_t v, int64_t min, int64_t max) {
+    if (v < min || v > max)
+      add(path, json_fields::integer_range_problem(min, max, std::to_string(v)));
+  }
+  void not_empty(const std::string& path, const std::string& text) {
+    if (text.empty()) add(path, "must not be empty");
+  }
+  // Reports the second and later uses of a name within one list.
+  void unique(std::map<std::string, std::string>& seen, const std::string& path,
+              const std::string& name, const char* what) {
+    if (name.empty()) return;
+    auto [it, inserted] = seen.emplace(name, path);
+    if (!inserted)
+      add(path, std::string("duplicate ") + what + " name " + Json(name).dump() + " (first at " +
+                    it->second + ")");
+  }
+  void material_ref(const std::string& path, const std::string& name) {
+    if (find_material(scene_, name) < 0) add(path, "unknown material " + Json(name).dump());
+  }
+  void texture_ref(const std::string& path, const std::string& name) {
+    if (!name.empty() && find_texture(scene_, name) < 0)
+      add(path, "unknown texture " + Json(name).dump());
+  }
+  void image_file(const std::string& path, const std::string& file) {
+    if (file.empty() || !check_files_) return;
+    try {
+      probe_image(resolve_asset_path(scene_, file));
+    } catch (const std::exception& e) {  // ImageError, or a filesystem error
+      add(path, std::string("cannot read image: ") + e.what());
+    }
+  }
+
+ private:
+  const Scene& scene_;
+  bool check_files_;
+};
+
+void check_camera(Checker& c, const Camera& cam) {
+  const bool position = c.finite("camera.position", cam.position);
+  const bool points = c.finite("camera.target", cam.target) && position;
+  const bool up = c.finite("camera.up", cam.up);
+  if (c.finite("camera.vfov_deg", cam.vfov_deg) && !(cam.vfov_deg > 0 && cam.vfov_deg < 180))
+    c.add("camera.vfov_deg", "must be in (0, 180) degrees (got " + float_text(cam.vfov_deg) + ")");
+  c.at_least("camera.aperture_radius", cam.aperture_radius, 0);
+  c.greater_than("camera.focus_distance", cam.focus_distance, 0);
+  if (!points) return;
+  const glm::dvec3 view = glm::dvec3(cam.target) - glm::dvec3(cam.position);
+  if (view == glm::dvec3(0)) {
+    c.add("camera.target", "must differ from camera.position");
+  } else if (up) {
+    const glm::dvec3 u(cam.up);
+    // |sin| of the angle between up and the view direction
+    if (u == glm::dvec3(0) ||
+        glm::length(glm::cross(glm::normalize(view), glm::normalize(u))) <= 1e-6)
+      c.add("camera.up", "must not be zero or parallel to the view direction");
+  }
+}
+
+// A quad's triangles (p0, p1, p2) and (p1, p3, p2) must each have an area: |cross| of two edges
+// above 1e-12 * scale^2, where scale is the largest distance between two corners.
+void check_quad_area(Checker& c, const std::string& path, const std::array<glm::vec3, 4>& p) {
+  std::array<glm::dvec3, 4> q;
+  for (int i = 0; i < 4; ++i) q[i] = p[i];
+  double scale2 = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) scale2 = std::max(scale2, glm::dot(q[i] - q[j], q[i] - q[j]));
+  const double tolerance = 1e-12 * scale2;
+  if (glm::length(glm::cross(q[1] - q[0], q[2] - q[0])) <= tolerance)
+    c.add(path, "zero-area quad (triangle p0, p1, p2 is degenerate)");
+  else if (glm::length(glm::cross(q[3] - q[1], q[2] - q[1])) <= tolerance)
+    c.add(path, "zero-area quad (triangle p1, p3, p2 is degenerate)");
+}
+
+// A relative asset path rewritten for a new folder; both folders are absolute.
+std::string rebase_path(const std::string& path, const fs::path& from, const fs::path& to) {
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  std::error_code ec;
+  const fs::path target = (from / path).lexically_normal();
+  const fs::path relative = fs::relative(target, to, ec);
+  return (ec || relative.empty() ? target : relative).generic_string();
+}
+
+fs::path folder_identity(const fs::path& folder) {
+  const fs::path absolute = fs::absolute(folder.empty() ? fs::current_path() : folder);
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(absolute, ec);
+  if (ec) canonical = absolute.lexically_normal();
+  return canonical.has_filename() ? canonical : canonical.parent_path();
+}
+
+// Writes and fsyncs a whole file; returns "" or the system's error message.
+std::string write_file_synced(const fs::path& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) return std::strerror(errno);
+  std::string error;
+  for (size_t done = 0; done < text.size() && error.empty();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n >= 0) done += static_cast<size_t>(n);
+    else if (errno != EINTR) error = std::strerror(errno);
+  }
+  if (error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
+  if (::close(fd) != 0 && error.empty()) error = std::strerror(errno);
+  return error;
+}
+
+}  // namespace
+
+ProjectError::ProjectError(std::string file_, std::string json_path_, std::string problem_)
+    : std::runtime_error(error_message(file_, json_path_, problem_)),
+      file(std::move(file_)),
+      json_path(std::move(json_path_)),
+      problem(std::move(problem_)) {}
+
+Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file,
+                      const fs::path& base_dir, bool check_files) {
+  using json_fields::fail;
+  if (!doc.is_object()) fail(file, "", "expected a JSON object, got " + json_fields::describe(doc));
+  // Format and version first: another kind of JSON file gets a clear message, not "unknown key".
+  const auto format = doc.find("format");
+  if (format == doc.end())
+    fail(file, "format", "missing (a Glint project has \"format\": \"glint-project\")");
+  if (*format != "glint-project")
+    fail(file, "format", "expected \"glint-project\", got " + json_fields::describe(*format));
+  const auto version = doc.find("version");
+  if (version == doc.end()) fail(file, "version", "missing required key");
+  if (*version != 1)
+    fail(file, "version",
+         "unsupported version " + version->dump() + " (this program reads version 1)");
+
+  ObjectReader root(doc, "", file,
+                    {"format", "version", "camera", "film", "render", "display", "environment",
+                     "textures", "materials", "spheres", "quads"});
+  Scene s;
+  s.base_dir = base_dir;
+  if (const Json* j = root.find("camera")) s.camera = parse_camera(*j, file);
+  if (const Json* j = root.find("film")) {
+    ObjectReader r(*j, "film", file, {"width", "height"});
+    r.read_integer("width", 1, kMaxFilmSize, s.film.width);
+    r.read_integer("height", 1, kMaxFilmSize, s.film.height);
+  }
+  if (const Json* j = root.find("render")) {
+    ObjectReader r(*j, "render", file, {"max_bounces", "seed"});
+    r.read_integer("max_bounces", 0, kMaxBounces, s.render.max_bounces);
+    r.read_integer("seed", 0, UINT32_MAX, s.render.seed);
+  }
+  if (const Json* j = root.find("display")) {
+    ObjectReader r(*j, "display", file, {"exposure", "tonemap"});
+    r.read("exposure", s.display.exposure);
+    std::string tonemap = to_string(s.display.tonemap);
+    r.read("tonemap", tonemap);
+    const auto parsed = tonemap_from_string(tonemap);
+    if (!parsed)
+      fail(file, "display.tonemap",
+           "unknown tonemap " + Json(tonemap).dump() + " (expected filmic or linear)");
+    s.display.tonemap = *parsed;
+  }
+  if (const Json* j = root.find("environment")) {
+    ObjectReader r(*j, "environment", file, {"color", "texture", "intensity", "rotation_deg"});
+    r.read("color", s.environment.color);
+    r.read_optional_string("texture", s.environment.texture);
+    r.read("intensity", s.environment.intensity);
+    r.read("rotation_deg", s.environment.rotation_deg);
+  }
+  parse_list(root, "textures", s.textures, parse_texture, file);
+  parse_list(root, "materials", s.materials, parse_material, file);
+  parse_list(root, "spheres", s.spheres, parse_sphere, file);
+  parse_list(root, "quads", s.quads, parse_quad, file);
+
+  const auto problems = validate_scene(s, check_files);
+  if (!problems.empty()) fail(file, problems.front().json_path, problems.front().problem);
+  return s;
+}
+
+Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
+                      const fs::path& base_dir, bool check_files) {
+  return scene_from_json(nlohmann::ordered_json(doc), file_label, base_dir, check_files);
+}
+
+std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
+  Checker c(scene, check_files);
+  check_camera(c, scene.camera);
+  c.integer_in("film.width", scene.film.width, 1, kMaxFilmSize);
+  c.integer_in("film.height", scene.film.height, 1, kMaxFilmSize);
+  c.integer_in("render.max_bounces", scene.render.max_bounces, 0, kMaxBounces);
+  c.finite("display.exposure", scene.display.exposure);
+
+  const Environment& env = scene.environment;
+  c.non_negative("environment.color", env.color);
+  c.image_file("environment.texture", env.texture);
+  c.at_least("environment.intensity", env.intensity, 0);
+  c.finite("environment.rotation_deg", env.rotation_deg);
+
+  std::map<std::string, std::string> texture_names, material_names;
+  for (size_t i = 0; i < scene.textures.size(); ++i) {
+    const Texture& t = scene.textures[i];
+    const std::string path = index_path("textures", i);
+    c.not_empty(child_path(path, "name"), t.name);
+    c.unique(texture_names, child_path(path, "name"), t.name, "texture");
+    c.not_empty(child_path(path, "path"), t.path);
+    c.image_file(child_path(path, "path"), t.path);
+  }
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    const std::string path = index_path("materials", i);
+    auto field = [&](const char* key) { return child_path(path, key); };
+    c.not_empty(field("name"), m.name);
+    c.unique(material_names, field("name"), m.name, "material");
+    c.non_negative(field("color"), m.color);
+    c.texture_ref(field("color_texture"), m.color_texture);
+    c.non_negative(field("emission"), m.emission);
+    c.texture_ref(field("emission_texture"), m.emission_texture);
+    c.in_unit_interval(field("roughness"), m.roughness);
+    c.texture_ref(field("roughness_texture"), m.roughness_texture);
+    c.at_least(field("ior"), m.ior, 1);
+    c.in_unit_interval(field("opacity"), m.opacity);
+  }
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    const std::string path = index_path("spheres", i);
+    c.finite(child_path(path, "center"), s.center);
+    c.greater_than(child_path(path, "radius"), s.radius, 0);
+    c.material_ref(child_path(path, "material"), s.material);
+  }
+  for (size_t i = 0; i < scene.quads.size(); ++i) {
+    const Quad& q = scene.quads[i];
+    const std::string path = index_path("quads", i);
+    c.material_ref(child_path(path, "material"), q.material);
+    const std::string corners = child_path(path, "corners");
+    bool corners_finite = true;
+    for (size_t k = 0; k < 4; ++k)
+      corners_finite = c.finite(index_path(corners, k), q.corners[k]) && corners_finite;
+    if (corners_finite) check_quad_area(c, corners, q.corners);
+    for (size_t k = 0; k < 4; ++k) c.finite(index_path(child_path(path, "uvs"), k), q.uvs[k]);
+  }
+  return c.problems;
+}
+
+nlohmann::ordered_json scene_to_json(const Scene& s) {
+  using json_fields::float_to_json;
+  using json_fields::vec_to_json;
+  auto name_or_null = [](const std::string& name) {
+    return name.empty() ? Json(nullptr) : Json(name);
+  };
+  Json j;
+  j["format"] = "glint-project";
+  j["version"] = 1;
+  Json& cam = j["camera"];
+  cam["position"] = vec_to_json(s.camera.position);
+  cam["target"] = vec_to_json(s.camera.target);
+  cam["up"] = vec_to_json(s.camera.up);
+  cam["vfov_deg"] = float_to_json(s.camera.vfov_deg);
+  cam["aperture_radius"] = float_to_json(s.camera.aperture_radius);
+  cam["focus_distance"] = float_to_json(s.camera.focus_distance);
+  j["film"]["width"] = s.film.width;
+  j["film"]["height"] = s.film.height;
+  j["render"]["max_bounces"] = s.render.max_bounces;
+  j["render"]["seed"] = s.render.seed;
+  j["display"]["exposure"] = float_to_json(s.display.exposure);
+  j["display"]["tonemap"] = to_string(s.display.tonemap);
+  Json& env = j["environment"];
+  env["color"] = vec_to_json(s.environment.color);
+  env["texture"] = name_or_null(s.environment.texture);
+  env["intensity"] = float_to_json(s.environment.intensity);
+  env["rotation_deg"] = float_to_json(s.environment.rotation_deg);
+
+  Json& textures = j["textures"] = Json::array();
+  for (const Texture& t : s.textures) {
+    Json& e = textures.emplace_back();
+    e["name"] = t.name;
+    e["path"] = t.path;
+  }
+  Json& materials = j["materials"] = Json::array();
+  for (const Material& m : s.materials) {
+    Json& e = materials.emplace_back();
+    e["name"] = m.name;
+    e["type"] = to_string(m.type);
+    e["color"] = vec_to_json(m.color);
+    e["color_texture"] = name_or_null(m.color_texture);
+    e["emission"] = vec_to_json(m.emission);
+    e["emission_texture"] = name_or_null(m.emission_texture);
+    e["roughness"] = float_to_json(m.roughness);
+    e["roughness_texture"] = name_or_null(m.roughness_texture);
+    e["ior"] = float_to_json(m.ior);
+    e["opacity"] = float_to_json(m.opacity);
+  }
+  Json& spheres = j["spheres"] = Json::array();
+  for (const Sphere& sp : s.spheres) {
+    Json& e = spheres.emplace_back();
+    e["name"] = sp.name;
+    e["center"] = vec_to_json(sp.center);
+    e["radius"] = float_to_json(sp.radius);
+    e["material"] = sp.material;
+  }
+  Json& quads = j["quads"] = Json::array();
+  for (const Quad& q : s.quads) {
+    Json& e = quads.emplace_back();
+    e["name"] = q.name;
+    e["material"] = q.material;
+    Json& corners = e["corners"] = Json::array();
+    for (const glm::vec3& p : q.corners) corners.push_back(vec_to_json(p));
+    Json& uvs = e["uvs"] = Json::array();
+    for (const glm::vec2& uv : q.uvs) uvs.push_back(vec_to_json(uv));
+  }
+  return j;
+}
+
+std::string project_file_text(const Scene& scene) {
+  return json_fields::pretty_print(scene_to_json(scene));
+}
+
+Scene rebase_asset_paths(const Scene& scene, const fs::path& new_base_dir) {
+  Scene out = scene;
+  out.base_dir = new_base_dir;
+  const fs::path from = folder_identity(scene.base_dir), to = folder_identity(new_base_dir);
+  if (from == to) return out;  // same folder: keep the paths exactly as they are
+  for (Texture& t : out.textures) t.path = rebase_path(t.path, from, to);
+  out.environment.texture = rebase_path(out.environment.texture, from, to);
+  return out;
+}
+
+Scene load_project(const fs::path& file) {
+  const std::string label = file.string();
+  std::error_code ec;
+  if (!fs::exists(file, ec) && !ec) throw ProjectError(label, "", "no such file");
+  if (fs::is_directory(file, ec)) throw ProjectError(label, "", "is a folder, not a project file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ProjectError(label, "", std::string("cannot open: ") + std::strerror(errno));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw ProjectError(label, "", "cannot read the file");
+  try {
+    return scene_from_json(json_fields::parse_text(text, label), label,
+                           fs::absolute(file).parent_path(), true);
+  } catch (const ProjectError&) {
+    throw;
+  } catch (const std::exception& e) {  // a safety net: nothing else escapes as another type
+    throw ProjectError(label, "", e.what());
+  }
+}
+
+void save_project(const Scene& scene, const fs::path& file) {
+  const std::string label = file.string();
+  fs::path tmp = file;
+  tmp += ".tmp";
+  std::string text, error;
+  try {
+    text = project_file_text(rebase_asset_paths(scene, fs::absolute(file).parent_path()));
+  } catch (const std::exception& e) {  // invalid UTF-8 in a name, or a filesystem error
+    throw ProjectError(label, "", std::string("cannot write the scene: ") + e.what());
+  }
+  error = write_file_synced(tmp, text);
+  std::error_code ec;
+  if (error.empty()) {
+    fs::rename(tmp, file, ec);
+    if (ec) error = "cannot replace the file: " + ec.message();
+  } else {
+    error = "cannot write " + tmp.string() + ": " + error;
+  }
+  if (!error.empty()) {
+    fs::remove(tmp, ec);
+    throw ProjectError(label, "", error);
+  }
+  // Make the rename itself durable (best effort).
+  const fs::path dir = fs::absolute(file).parent_path();
+  if (const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+
+}  // namespace glint
