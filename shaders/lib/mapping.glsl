@@ -21,8 +21,9 @@ vec3 uv_to_direction(vec2 uv) {
 vec2 environment_uv(vec3 d, float rotation) {
   float c = cos(rotation);
   float s = sin(rotation);
-  // Rotating the environment by +r is looking it up along d rotated by -r.
-  vec3 local = vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
+  // Rotating the environment by +r is looking it up along d rotated by -r. Right-handed
+  // rotation about +Y by r maps (x, z) to (c x + s z, -s x + c z) (+Z towards +X), so by -r:
+  vec3 local = vec3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
   return direction_to_uv(local);
 }
 

