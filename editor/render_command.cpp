@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -112,6 +113,10 @@ int run_render_command(int argc, char** argv) {
   }
 
   try {
+    // Fail before rendering, not after, when the image could not be written.
+    auto out_dir = std::filesystem::absolute(o.output).parent_path();
+    if (!std::filesystem::is_directory(out_dir))
+      throw std::runtime_error(o.output + ": the folder " + out_dir.string() + " does not exist");
     Scene scene = load_project(o.project);
     int width = scene.film.width, height = scene.film.height;
     if (o.width && o.height) {
