@@ -79,12 +79,16 @@ void GpuRenderer::resize(int width, int height) {
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   SceneDigests d = digest_scene(scene);
   SyncResult result;
-  // Images first: if one fails to load, nothing has changed yet.
-  if (first_sync_ || d.textures != digests_.textures || d.materials != digests_.materials)
-    upload_textures(scene);
+  const bool geometry_changed =
+      first_sync_ || d.geometry != digests_.geometry || d.materials != digests_.materials;
+  PackedScene packed;
+  if (geometry_changed) packed = pack_scene(scene);
+  // Images first: if one fails to load, nothing has changed yet. Textures are reloaded only
+  // when their files or the set of layers in use change, not on every material edit.
+  if (first_sync_ || d.textures != digests_.textures || (geometry_changed && packed.layers != layers_))
+    upload_textures(scene, packed.layers);
   if (first_sync_ || d.environment != digests_.environment) upload_environment(scene);
-  if (first_sync_ || d.geometry != digests_.geometry || d.materials != digests_.materials)
-    upload_geometry(scene);
+  if (geometry_changed) upload_geometry(packed);
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;
@@ -109,8 +113,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   return result;
 }
 
-void GpuRenderer::upload_geometry(const Scene& scene) {
-  PackedScene packed = pack_scene(scene);
+void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_storage(buffers_[0], packed.spheres);
   upload_storage(buffers_[1], packed.quads);
   upload_storage(buffers_[2], packed.materials);
@@ -118,10 +121,9 @@ void GpuRenderer::upload_geometry(const Scene& scene) {
   trace_program_->set("u_quad_count", static_cast<int>(packed.quads.size()));
 }
 
-void GpuRenderer::upload_textures(const Scene& scene) {
-  PackedScene packed = pack_scene(scene);
+void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
   std::vector<Image> images;
-  for (const TextureLayer& layer : packed.layers)
+  for (const TextureLayer& layer : layers)
     images.push_back(load_image(resolve_asset_path(scene, scene.textures[layer.texture].path),
                                 layer.encoding));
   // One array sized to the largest texture; each layer records its own size and the shader
@@ -141,6 +143,7 @@ void GpuRenderer::upload_textures(const Scene& scene) {
     sizes.emplace_back(images[i].width, images[i].height, 0, 0);
   }
   upload_storage(buffers_[3], sizes);
+  layers_ = layers;
 }
 
 void GpuRenderer::upload_environment(const Scene& scene) {

@@ -11,6 +11,7 @@
 
 #include <epoxy/gl.h>
 
+#include "renderer/gpu_scene.h"
 #include "renderer/image.h"
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
@@ -54,8 +55,8 @@ class GpuRenderer {
 
  private:
   void resize(int width, int height);
-  void upload_geometry(const Scene& scene);
-  void upload_textures(const Scene& scene);
+  void upload_geometry(const PackedScene& packed);
+  void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
 
@@ -77,6 +78,7 @@ class GpuRenderer {
   bool display_stale_ = true;
   bool first_sync_ = true;
   SceneDigests digests_;
+  std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
 };
 
 }  // namespace glint

@@ -68,6 +68,15 @@ TEST(GlTextures, TexturesOfDifferentSizesShareTheArray) {
   EXPECT_GT(green.g, 0.9f); EXPECT_LT(green.r, 0.1f);
   EXPECT_GT(blue.b, 0.9f); EXPECT_LT(blue.r, 0.1f);
   EXPECT_GT(yellow.r, 0.9f); EXPECT_GT(yellow.g, 0.9f); EXPECT_LT(yellow.b, 0.1f);
+
+  // Reassigning a slot changes the layers in use: the left quad now shows texture b.
+  scene.materials[0].emission_texture = "b";
+  EXPECT_TRUE(r.sync(scene, w, h).accumulation_reset);
+  r.trace(16);
+  img = r.read_accumulation();
+  glm::vec3 left_low = at(-1.7f, -0.5f), left_high = at(-1.7f, 0.5f);
+  EXPECT_GT(left_low.b, 0.9f); EXPECT_LT(left_low.r, 0.1f);
+  EXPECT_GT(left_high.r, 0.9f); EXPECT_GT(left_high.g, 0.9f);
 }
 
 // A black surface of coverage c in front of an emitter E: each sample sees E with probability
