@@ -23,21 +23,29 @@ struct Camera {
   float vfov_deg = 40;
   float aperture_radius = 0;  // thin-lens radius in world units; 0 is a pinhole
   float focus_distance = 5;   // along the view direction
+
+  bool operator==(const Camera&) const = default;
 };
 
 struct Film {
   int width = 960;
   int height = 540;
+
+  bool operator==(const Film&) const = default;
 };
 
 struct RenderSettings {
   int max_bounces = 8;  // scattering events on a path; light found after the last still counts
   uint32_t seed = 0;    // selects an independent sample sequence
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 struct DisplaySettings {
   float exposure = 0;  // stops
   Tonemap tonemap = Tonemap::filmic;
+
+  bool operator==(const DisplaySettings&) const = default;
 };
 
 struct Environment {
@@ -45,11 +53,15 @@ struct Environment {
   std::string texture;  // lat-long HDR/EXR path relative to the project; empty means none (null)
   float intensity = 1;
   float rotation_deg = 0;  // about +Y
+
+  bool operator==(const Environment&) const = default;
 };
 
 struct Texture {
   std::string name;
   std::string path;  // relative to the project file (or absolute)
+
+  bool operator==(const Texture&) const = default;
 };
 
 struct Material {
@@ -63,6 +75,8 @@ struct Material {
   std::string roughness_texture;
   float ior = 1.5f;
   float opacity = 1;
+
+  bool operator==(const Material&) const = default;
 };
 
 struct Sphere {
@@ -70,6 +84,8 @@ struct Sphere {
   glm::vec3 center{0, 0, 0};
   float radius = 1;
   std::string material;
+
+  bool operator==(const Sphere&) const = default;
 };
 
 // Two triangles (p0, p1, p2) and (p1, p3, p2); p3 is opposite p0.
@@ -78,6 +94,8 @@ struct Quad {
   std::string material;
   std::array<glm::vec3, 4> corners{};
   std::array<glm::vec2, 4> uvs{glm::vec2{0, 0}, glm::vec2{0, 1}, glm::vec2{1, 0}, glm::vec2{1, 1}};
+
+  bool operator==(const Quad&) const = default;
 };
 
 struct Scene {
@@ -94,6 +112,9 @@ struct Scene {
   // Not part of the file: the folder that relative asset paths are resolved against
   // (the project file's folder; the current folder for a scene that was never saved).
   std::filesystem::path base_dir;
+
+  // Equal scenes render alike and save alike (base_dir included: it resolves the paths).
+  bool operator==(const Scene&) const = default;
 };
 
 // Index look-ups by name; -1 when absent.

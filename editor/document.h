@@ -1,0 +1,63 @@
+// The open document: the scene being edited, its file, the selection, and undo/redo.
+//
+// Undo is derived, like the renderer's change detection: at the end of every UI frame the
+// editor calls end_frame(); if the scene differs from the last committed state and no drag is
+// in progress, the previous state becomes an undo step. No widget has to register its edits,
+// and a whole drag (mouse held on a slider or the gizmo) is one step.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "renderer/scene.h"
+
+namespace glint {
+
+enum class SelectionKind { none, sphere, quad, material, texture, environment, camera };
+
+struct Selection {
+  SelectionKind kind = SelectionKind::none;
+  int index = -1;
+  bool operator==(const Selection&) const = default;
+};
+
+class Document {
+ public:
+  Document();  // an untitled document holding new_scene()
+  explicit Document(Scene scene, std::filesystem::path path = {});
+
+  Scene scene;
+  Selection selection;
+
+  const std::filesystem::path& path() const { return path_; }  // empty when untitled
+  std::string display_name() const;                             // file name or "Untitled"
+  std::string window_title() const;  // "name.glint* - Glint" (the * marks unsaved changes)
+  bool dirty() const;                // the scene differs from what was last saved or opened
+
+  // Saves to `file` (Save As when it differs from path()), rebasing asset paths; afterwards the
+  // document is clean and path() is `file`. Throws ProjectError.
+  void save(const std::filesystem::path& file);
+
+  // Call once per UI frame, after the widgets ran. `interacting`: a drag is in progress.
+  void end_frame(bool interacting);
+  bool can_undo() const { return !undo_.empty(); }
+  bool can_redo() const { return !redo_.empty(); }
+  void undo();
+  void redo();
+
+ private:
+  struct State {
+    Scene scene;
+    Selection selection;
+  };
+  std::filesystem::path path_;
+  Scene saved_;        // the scene as last saved or opened
+  State committed_;    // the state the undo history ends at
+  std::vector<State> undo_, redo_;
+};
+
+// The scene of File > New: a floor, one sphere, a grey environment, default camera.
+Scene new_scene();
+
+}  // namespace glint

@@ -1,0 +1,57 @@
+// Edits of a scene, as free functions on plain values (no UI). Each keeps the scene valid:
+// names stay unique, references follow renames, nothing dangles after a delete.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "editor/document.h"
+#include "renderer/scene.h"
+
+namespace glint {
+
+// A name not used by any object of the same kind: base, base_2, base_3, ...
+std::string unique_sphere_name(const Scene& scene, const std::string& base);
+std::string unique_quad_name(const Scene& scene, const std::string& base);
+std::string unique_material_name(const Scene& scene, const std::string& base);
+std::string unique_texture_name(const Scene& scene, const std::string& base);
+
+// The material new objects get: the first material, or a new grey matte one if there is none.
+std::string default_material(Scene& scene);
+
+// Adds an object in front of the camera (at the focus distance along the view, at least 1 unit
+// away, sized to a tenth of that distance). Returns its index.
+int add_sphere(Scene& scene);
+int add_quad(Scene& scene);  // facing the camera
+int add_material(Scene& scene, MaterialType type);
+// Adds a texture entry for an image file; the path is stored relative to scene.base_dir when it
+// lies below it. Returns the index (an existing entry for the same path is reused).
+int add_texture(Scene& scene, const std::filesystem::path& file);
+
+// Duplicates are offset slightly so that they are visible. Return the new index.
+int duplicate(Scene& scene, Selection what);
+// Deletes; a material in use or a texture in use is replaced by the default material / no
+// texture in the objects that used it. Returns the selection to show afterwards.
+Selection remove(Scene& scene, Selection what);
+// Renames; references follow. Returns false (and changes nothing) if the name is empty or taken.
+bool rename(Scene& scene, Selection what, const std::string& name);
+std::string name_of(const Scene& scene, Selection what);
+
+// Translation of spheres and quads (the gizmo and the numeric fields).
+std::optional<glm::vec3> selection_center(const Scene& scene, Selection what);
+void translate(Scene& scene, Selection what, glm::vec3 delta);
+
+// A quad as centre, size and orientation (the UI's alternative to corners). The quad's edges
+// p0->p2 and p0->p1 are its local x and y axes; size is their lengths; rotation is the
+// intrinsic X-Y-Z Euler angles in degrees of the frame (x, y, x cross y).
+struct QuadPlacement {
+  glm::vec3 center{0};
+  glm::vec2 size{1};
+  glm::vec3 rotation_deg{0};
+};
+QuadPlacement quad_placement(const Quad& quad);  // exact for rectangles
+void set_quad_placement(Quad& quad, const QuadPlacement& placement);  // makes it a rectangle
+
+}  // namespace glint
