@@ -43,6 +43,13 @@ std::string name_of(const Scene& scene, Selection what);
 std::optional<glm::vec3> selection_center(const Scene& scene, Selection what);
 void translate(Scene& scene, Selection what, glm::vec3 delta);
 
+// A sphere around the selected sphere or quad (for frame(), the F key); nullopt otherwise.
+struct BoundingSphere {
+  glm::vec3 center{0};
+  float radius = 0;
+};
+std::optional<BoundingSphere> selection_bounds(const Scene& scene, Selection what);
+
 // A quad as centre, size and orientation (the UI's alternative to corners). The quad's edges
 // p0->p2 and p0->p1 are its local x and y axes; size is their lengths; rotation is the
 // intrinsic X-Y-Z Euler angles in degrees of the frame (x, y, x cross y).

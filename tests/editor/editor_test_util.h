@@ -1,0 +1,49 @@
+// Helpers shared by the editor tests: a temporary folder and a validity assertion.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "renderer/project_file.h"
+
+namespace glint::test {
+
+// A fresh folder under the system temp folder, removed with its contents at the end.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "glint-editor-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// All problems of validate_scene joined, "" when valid (so a failure shows them).
+inline std::string problems(const Scene& scene, bool check_files = false) {
+  std::string out;
+  for (const ProjectError& e : validate_scene(scene, check_files)) out += std::string(e.what()) + "\n";
+  return out;
+}
+
+// A real image from the committed example assets, copied to `to`.
+inline void copy_asset(const std::string& name, const std::filesystem::path& to) {
+  std::filesystem::create_directories(to.parent_path());
+  std::filesystem::copy_file(std::filesystem::path(GLINT_SOURCE_DIR) / "projects/assets" / name, to,
+                             std::filesystem::copy_options::overwrite_existing);
+}
+
+}  // namespace glint::test
