@@ -1,7 +1,8 @@
-// glint: the scene editor (GLFW + Dear ImGui, next issue) and `glint render` (headless).
+// glint: the scene editor (GLFW + Dear ImGui) and `glint render` (headless).
 #include <cstdio>
 #include <string>
 
+#include "editor/editor_app.h"
 #include "editor/render_command.h"
 
 namespace {
@@ -10,10 +11,14 @@ const char* const kHelp =
     "glint: a scene editor with a progressive GPU path tracer\n"
     "\n"
     "usage:\n"
+    "  glint [PROJECT.glint] [options]                            open the editor\n"
     "  glint render PROJECT.glint -o OUT.{png,hdr,exr} [options]   headless final render\n"
     "  glint render --help                                        render options\n"
     "\n"
-    "The interactive editor is not built yet; `glint render` is the way to render a project.\n";
+    "Editor options (the editor needs a display; on a server use xvfb-run):\n"
+    "  --size WxH           window size (default 1280x800)\n"
+    "  --screenshot FILE    save a PNG of the window after --frames N (default 60) or once\n"
+    "                       the viewport has --spp N samples per pixel, then exit\n";
 
 }  // namespace
 
@@ -24,7 +29,11 @@ int main(int argc, char** argv) {
     std::fputs(kHelp, stdout);
     return 0;
   }
-  std::fprintf(stderr, "glint: %s\n\n%s",
-               command.empty() ? "no command given" : ("unknown command '" + command + "'").c_str(), kHelp);
-  return 2;
+  std::string error;
+  auto options = glint::parse_editor_options(argc - 1, argv + 1, error);
+  if (!options) {
+    std::fprintf(stderr, "glint: %s\n\n%s", error.c_str(), kHelp);
+    return 2;
+  }
+  return glint::run_editor(*options);
 }

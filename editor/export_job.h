@@ -1,0 +1,63 @@
+// Export of a final render from the editor, without blocking it: a second GpuRenderer at the
+// export size traces a few samples per call of step(), so the UI keeps running between slices.
+// No ImGui here (ui_export.cpp is its dialog); needs a current OpenGL 4.5 context.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "renderer/scene.h"
+
+namespace glint {
+
+class GpuRenderer;
+
+struct ExportSettings {
+  int width = 960;
+  int height = 540;
+  bool use_time = false;   // false: stop at `samples`; true: stop after `seconds` of tracing
+  int64_t samples = 64;
+  double seconds = 10;
+  std::filesystem::path output;  // .png (tonemapped), .hdr or .exr (linear radiance, alpha 1)
+};
+
+// "" when valid, else the problem (shown in the dialog before starting).
+std::string validate_export_settings(const ExportSettings& settings);
+
+class ExportJob {
+ public:
+  enum class State { running, done, cancelled, failed };
+
+  // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting.
+  ExportJob(const Scene& scene, ExportSettings settings);
+  ~ExportJob();
+  ExportJob(const ExportJob&) = delete;
+  ExportJob& operator=(const ExportJob&) = delete;
+
+  // Traces for about `slice_seconds` (at least one pass) and writes the file when the target
+  // is reached. Leaves the default framebuffer bound. Returns true while still running.
+  bool step(double slice_seconds);
+  void cancel();
+
+  State state() const { return state_; }
+  float progress() const;  // 0..1
+  int64_t samples() const;
+  double elapsed_seconds() const { return traced_seconds_; }
+  const std::string& error() const { return error_; }
+  const ExportSettings& settings() const { return settings_; }
+
+ private:
+  void finish();
+
+  Scene scene_;
+  ExportSettings settings_;
+  std::unique_ptr<GpuRenderer> renderer_;
+  State state_ = State::running;
+  std::string error_;
+  int batch_ = 1;
+  double traced_seconds_ = 0;
+};
+
+}  // namespace glint

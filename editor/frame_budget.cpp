@@ -1,0 +1,62 @@
+#include "editor/frame_budget.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint {
+
+void FrameBudget::set_config(const FrameBudgetConfig& config) {
+  config_ = config;
+  divisor_ = std::clamp(divisor_, config_.min_divisor, config_.max_divisor);
+}
+
+void FrameBudget::record_frame(double frame_seconds, double trace_seconds) {
+  if (!(frame_seconds > 0) || !(trace_seconds >= 0)) return;
+  double rest = std::max(0.0, frame_seconds - trace_seconds);
+  overhead_ = overhead_ < 0 ? rest : 0.9 * overhead_ + 0.1 * rest;
+  config_.trace_seconds = std::max(config_.min_trace_seconds, config_.frame_seconds - overhead_);
+}
+
+int FrameBudget::samples(int64_t pixels) const {
+  if (cost_ <= 0 || pixels <= 0) return 1;
+  double k = config_.trace_seconds / (cost_ * static_cast<double>(pixels));
+  return static_cast<int>(std::clamp(std::floor(k), 1.0, static_cast<double>(config_.max_samples)));
+}
+
+int FrameBudget::wanted_divisor(int64_t full_pixels) const {
+  // Smallest d with full_pixels / d^2 * cost <= budget, i.e. one sample per pixel fits.
+  double d = std::sqrt(std::max(0.0, cost_ * static_cast<double>(full_pixels) / config_.trace_seconds));
+  int want = static_cast<int>(std::ceil(d - 1e-9));
+  return std::clamp(want, config_.min_divisor, config_.max_divisor);
+}
+
+void FrameBudget::record(int samples, int64_t pixels, double seconds, int64_t full_pixels) {
+  if (samples <= 0 || pixels <= 0 || !(seconds > 0)) return;
+  double measured = seconds / (static_cast<double>(samples) * static_cast<double>(pixels));
+  // Smooth, but follow large increases at once so that a heavy scene never stalls the UI.
+  cost_ = cost_ <= 0 || measured > 2 * cost_ ? measured : 0.8 * cost_ + 0.2 * measured;
+
+  int want = wanted_divisor(full_pixels);
+  if (want > divisor_) {
+    divisor_ = want;  // too slow: coarser at once
+    pending_frames_ = 0;
+    return;
+  }
+  // Finer only when the finer size fits with 30% headroom for several frames in a row.
+  if (want < divisor_) {
+    double fine_seconds = cost_ * static_cast<double>(full_pixels) / (double(want) * want);
+    if (fine_seconds * 1.3 > config_.trace_seconds) want += 1;
+    if (want < divisor_) {
+      pending_frames_ = want == pending_ ? pending_frames_ + 1 : 1;
+      pending_ = want;
+      if (pending_frames_ >= 10) {
+        divisor_ = want;
+        pending_frames_ = 0;
+      }
+      return;
+    }
+  }
+  pending_frames_ = 0;
+}
+
+}  // namespace glint

@@ -1,0 +1,141 @@
+// The editor's panels. Each takes the Document and the EditorState and needs only an ImGui
+// context (and a current GL context for thumbnails): no GLFW, so tests drive them headlessly.
+//
+// One frame: draw_editor_ui() lays out fixed panels (no docking) and runs them in order:
+// shortcuts, menu bar, outliner, properties, status bar, modals, export dialog, and last the
+// viewport, which handles its mouse input, then calls state.render_viewport (sync, trace,
+// tonemap) and shows the display texture. The caller then ends the frame with
+// doc.end_frame(ImGui::IsAnyItemActive() || state.interacting).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <imgui.h>
+
+#include "editor/document.h"
+#include "editor/export_job.h"
+#include "editor/thumbnails.h"
+
+namespace glint {
+
+// What a chosen file is for (native dialog or the typed-path prompt).
+enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output };
+// Actions behind the unsaved-changes guard.
+enum class DocAction { none, new_document, open_dialog, open_path, quit };
+enum class ViewportResolution { automatic, full, half, quarter };
+
+struct FrameStats {
+  int64_t spp = 0;
+  double spp_per_second = 0;
+  double ms_per_frame = 0;
+  int trace_width = 0, trace_height = 0;
+  std::string gl_renderer;
+  std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
+};
+
+struct EditorState {
+  // Layout, in ImGui units (points), set by draw_editor_ui each frame.
+  float left_width = 270, right_width = 340;
+  ImVec2 viewport_pos{0, 0}, viewport_size{1, 1};
+  // Trace pixels per ImGui unit (io.DisplayFramebufferScale): HiDPI traces at framebuffer pixels.
+  float framebuffer_scale = 1;
+
+  // The viewport image: called inside the viewport panel after its input was handled.
+  std::function<void(Document&, EditorState&)> render_viewport;
+  unsigned display_texture = 0;
+  FrameStats stats;
+  ViewportResolution resolution = ViewportResolution::automatic;
+
+  // Viewport tools and drags.
+  bool focus_tool = false;   // a click sets the focus distance instead of selecting
+  bool interacting = false;  // a gizmo or camera drag is in progress (one undo step)
+  int gizmo_axis = -1;       // axis being dragged, -1 none
+  int gizmo_hover = -1;
+  glm::vec3 gizmo_start_center{0};
+  ImVec2 gizmo_start_mouse{0, 0};
+  ImVec2 gizmo_axis_screen{0, 0};  // screen vector of the dragged handle at drag start
+  float gizmo_length = 1;          // world length of the handles
+  int camera_button = -1;          // mouse button driving the camera, -1 none
+  bool camera_moved = false;
+  ImVec2 press_pos{0, 0};
+
+  // Documents.
+  DocAction pending = DocAction::none;
+  std::filesystem::path pending_path;
+  bool open_unsaved_prompt = false;
+  bool quit_approved = false;  // the app loop ends when set
+  bool native_dialogs = false; // tinyfd has a graphical backend
+  std::vector<std::filesystem::path> recent_files;
+  std::function<void(const std::filesystem::path&)> on_opened_or_saved;  // recent-file list
+  std::filesystem::path projects_dir;  // examples for the 1-4 keys
+
+  // The typed-path prompt (when no native dialog exists).
+  struct PathPrompt {
+    bool request_open = false;
+    FilePurpose purpose = FilePurpose::open_project;
+    std::string title;
+    char buffer[1024] = {};
+  } prompt;
+  int slot_material = -1;  // the texture slot a chosen file goes to
+  int slot_index = 0;      // 0 colour, 1 emission, 2 roughness
+
+  // Messages: a transient line in the status bar and a modal for errors.
+  std::string message;
+  double message_until = 0;
+  std::string error;
+  bool open_error = false;
+
+  // Export.
+  bool show_export = false;
+  ExportSettings export_settings;
+  std::unique_ptr<ExportJob> export_job;
+  std::string export_message;
+
+  // Renaming in the outliner.
+  Selection renaming;
+  char rename_buffer[256] = {};
+
+  ThumbnailCache thumbnails;
+};
+
+// The whole UI for one frame (between ImGui::NewFrame and ImGui::Render).
+void draw_editor_ui(Document& doc, EditorState& state);
+
+void handle_shortcuts(Document& doc, EditorState& state);
+void draw_main_menu(Document& doc, EditorState& state);
+void draw_outliner(Document& doc, EditorState& state);
+void draw_properties(Document& doc, EditorState& state);
+void draw_status_bar(Document& doc, EditorState& state);
+void draw_document_modals(Document& doc, EditorState& state);
+void draw_export_dialog(Document& doc, EditorState& state);
+void draw_viewport(Document& doc, EditorState& state);
+void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
+
+// Document actions (menus, keys and tests). request_action asks about unsaved changes first.
+void request_action(Document& doc, EditorState& state, DocAction action, std::filesystem::path path = {});
+bool open_document(Document& doc, EditorState& state, const std::filesystem::path& file);
+bool save_document(Document& doc, EditorState& state, bool save_as);
+void new_document(Document& doc, EditorState& state);
+// Asks for a file (native dialog, else the typed-path prompt) and applies it.
+void choose_file(Document& doc, EditorState& state, FilePurpose purpose);
+void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, const std::string& file);
+void show_error(EditorState& state, const std::string& message);
+void show_message(EditorState& state, const std::string& message);
+
+// The example project of key 1-4 (empty if projects_dir is unknown).
+std::filesystem::path example_project(const EditorState& state, int number);
+// Searches upwards from these folders for projects/default.glint; returns the projects folder.
+std::filesystem::path find_projects_dir(const std::vector<std::filesystem::path>& starts);
+
+// Viewport maths (ui_viewport.cpp): world point -> viewport pixel (relative to its top-left);
+// false when behind the camera.
+bool project_to_viewport(const Camera& camera, glm::vec2 viewport_size, glm::vec3 p, glm::vec2& out);
+// Selects (or focuses, with the focus tool or Ctrl) at a viewport position in [0,1]^2.
+void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focus);
+
+}  // namespace glint

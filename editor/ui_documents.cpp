@@ -1,0 +1,274 @@
+// Document actions: new, open, save, save as, the unsaved-changes guard, choosing files (native
+// dialog or typed path), and the modals that go with them.
+#include <cstring>
+
+#include "editor/file_dialogs.h"
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+#include "renderer/image.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace fs = std::filesystem;
+namespace {
+
+const char* const kUnsavedPopup = "Unsaved changes";
+const char* const kPathPopup = "Choose a file";
+const char* const kErrorPopup = "Error";
+
+// A path as the project stores it: relative when below the project's folder.
+std::string project_relative(const Scene& scene, const fs::path& file) {
+  std::error_code ec;
+  fs::path base = fs::absolute(scene.base_dir.empty() ? fs::current_path(ec) : scene.base_dir, ec).lexically_normal();
+  fs::path abs = fs::absolute(file, ec).lexically_normal();
+  fs::path rel = abs.lexically_relative(base);
+  if (!rel.empty() && *rel.begin() != "..") return rel.generic_string();
+  return abs.string();
+}
+
+void perform(Document& doc, EditorState& state, DocAction action, const fs::path& path) {
+  switch (action) {
+    case DocAction::new_document: new_document(doc, state); break;
+    case DocAction::open_dialog: choose_file(doc, state, FilePurpose::open_project); break;
+    case DocAction::open_path: open_document(doc, state, path); break;
+    case DocAction::quit: state.quit_approved = true; break;
+    case DocAction::none: break;
+  }
+}
+
+struct DialogSpec {
+  const char* title;
+  bool save;
+  std::vector<std::string> filters;
+  const char* description;
+};
+
+DialogSpec dialog_spec(FilePurpose purpose) {
+  switch (purpose) {
+    case FilePurpose::open_project: return {"Open project", false, {"*.glint"}, "Glint projects"};
+    case FilePurpose::save_project_as: return {"Save project as", true, {"*.glint"}, "Glint projects"};
+    case FilePurpose::texture_slot:
+    case FilePurpose::add_texture:
+      return {"Choose a texture image", false, {"*.png", "*.jpg", "*.jpeg", "*.hdr", "*.exr"}, "Images"};
+    case FilePurpose::environment: return {"Choose an environment map", false, {"*.hdr", "*.exr"}, "HDR images"};
+    case FilePurpose::export_output: return {"Export render to", true, {"*.png", "*.hdr", "*.exr"}, "Images"};
+  }
+  return {"Choose a file", false, {}, ""};
+}
+
+}  // namespace
+
+void show_error(EditorState& state, const std::string& message) {
+  state.error = message;
+  state.open_error = true;
+}
+
+void show_message(EditorState& state, const std::string& message) {
+  state.message = message;
+  state.message_until = ImGui::GetTime() + 4.0;
+}
+
+void request_action(Document& doc, EditorState& state, DocAction action, fs::path path) {
+  if (doc.dirty()) {
+    state.pending = action;
+    state.pending_path = std::move(path);
+    state.open_unsaved_prompt = true;
+    return;
+  }
+  perform(doc, state, action, path);
+}
+
+void new_document(Document& doc, EditorState& state) {
+  doc = Document();
+  state.thumbnails.clear();
+  show_message(state, "New project");
+}
+
+bool open_document(Document& doc, EditorState& state, const fs::path& file) {
+  try {
+    Scene scene = load_project(file);
+    doc = Document(std::move(scene), fs::absolute(file));
+    state.thumbnails.clear();
+    if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+    show_message(state, "Opened " + file.string());
+    return true;
+  } catch (const std::exception& e) {
+    show_error(state, e.what());
+    return false;
+  }
+}
+
+bool save_document(Document& doc, EditorState& state, bool save_as) {
+  if (save_as || doc.path().empty()) {
+    choose_file(doc, state, FilePurpose::save_project_as);
+    return false;  // completes when a file is chosen (perhaps in a later frame)
+  }
+  try {
+    doc.save(doc.path());
+    if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+    show_message(state, "Saved " + doc.path().string());
+    return true;
+  } catch (const std::exception& e) {
+    show_error(state, e.what());
+    return false;
+  }
+}
+
+void choose_file(Document& doc, EditorState& state, FilePurpose purpose) {
+  DialogSpec spec = dialog_spec(purpose);
+  std::string start = doc.path().empty() ? fs::current_path().string() + "/" : doc.path().string();
+  if (purpose == FilePurpose::export_output) start = state.export_settings.output.string();
+  if (state.native_dialogs) {
+    auto chosen = spec.save ? native_save_dialog(spec.title, start, spec.filters, spec.description)
+                            : native_open_dialog(spec.title, start, spec.filters, spec.description);
+    if (chosen) apply_chosen_file(doc, state, purpose, *chosen);
+    else if (purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+    return;
+  }
+  state.prompt.request_open = true;
+  state.prompt.purpose = purpose;
+  state.prompt.title = spec.title;
+  std::snprintf(state.prompt.buffer, sizeof state.prompt.buffer, "%s", start.c_str());
+}
+
+void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, const std::string& file) {
+  fs::path path(file);
+  try {
+    switch (purpose) {
+      case FilePurpose::open_project: open_document(doc, state, path); break;
+      case FilePurpose::save_project_as: {
+        if (path.extension().empty()) path += ".glint";
+        doc.save(path);
+        if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+        show_message(state, "Saved " + doc.path().string());
+        // A save that was asked for by the unsaved-changes prompt continues its action.
+        DocAction next = state.pending;
+        state.pending = DocAction::none;
+        perform(doc, state, next, state.pending_path);
+        break;
+      }
+      case FilePurpose::add_texture:
+      case FilePurpose::texture_slot: {
+        probe_image(path);  // refuse unreadable files before they reach the scene
+        int t = add_texture(doc.scene, path);
+        if (purpose == FilePurpose::texture_slot && state.slot_material >= 0 &&
+            state.slot_material < static_cast<int>(doc.scene.materials.size())) {
+          Material& m = doc.scene.materials[state.slot_material];
+          std::string& slot = state.slot_index == 0 ? m.color_texture
+                              : state.slot_index == 1 ? m.emission_texture : m.roughness_texture;
+          slot = doc.scene.textures[t].name;
+        }
+        break;
+      }
+      case FilePurpose::environment: {
+        ImageInfo info = probe_image(path);
+        if (!info.high_dynamic_range && path.extension() != ".hdr" && path.extension() != ".exr")
+          throw std::runtime_error(file + ": the environment must be an .hdr or .exr image");
+        doc.scene.environment.texture = project_relative(doc.scene, path);
+        break;
+      }
+      case FilePurpose::export_output: state.export_settings.output = path; break;
+    }
+  } catch (const std::exception& e) {
+    if (purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+    show_error(state, e.what());
+  }
+}
+
+void draw_document_modals(Document& doc, EditorState& state) {
+  if (state.open_unsaved_prompt) {
+    ImGui::OpenPopup(kUnsavedPopup);
+    state.open_unsaved_prompt = false;
+  }
+  if (ImGui::BeginPopupModal(kUnsavedPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s has unsaved changes.", doc.display_name().c_str());
+    ImGui::TextUnformatted("Save them first?");
+    ImGui::Spacing();
+    if (ImGui::Button("Save", ImVec2(90, 0))) {
+      ImGui::CloseCurrentPopup();
+      if (doc.path().empty()) {
+        choose_file(doc, state, FilePurpose::save_project_as);  // continues the action when saved
+      } else if (save_document(doc, state, false)) {
+        DocAction next = state.pending;
+        state.pending = DocAction::none;
+        perform(doc, state, next, state.pending_path);
+      } else {
+        state.pending = DocAction::none;
+      }
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Discard", ImVec2(90, 0))) {
+      ImGui::CloseCurrentPopup();
+      DocAction next = state.pending;
+      state.pending = DocAction::none;
+      perform(doc, state, next, state.pending_path);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+      ImGui::CloseCurrentPopup();
+      state.pending = DocAction::none;
+    }
+    ImGui::EndPopup();
+  }
+
+  if (state.prompt.request_open) {
+    ImGui::OpenPopup(kPathPopup);
+    state.prompt.request_open = false;
+  }
+  ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  if (ImGui::BeginPopupModal(kPathPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::TextUnformatted(state.prompt.title.c_str());
+    ImGui::TextDisabled("No file dialog is available here: type the path.");
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    ImGui::SetNextItemWidth(-1);
+    bool enter = ImGui::InputText("##path", state.prompt.buffer, sizeof state.prompt.buffer,
+                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    if (ImGui::Button("OK", ImVec2(90, 0)) || enter) {
+      ImGui::CloseCurrentPopup();
+      std::string chosen = state.prompt.buffer;
+      if (!chosen.empty()) apply_chosen_file(doc, state, state.prompt.purpose, chosen);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+      ImGui::CloseCurrentPopup();
+      if (state.prompt.purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+    }
+    ImGui::EndPopup();
+  }
+
+  if (state.open_error) {
+    ImGui::OpenPopup(kErrorPopup);
+    state.open_error = false;
+  }
+  ImGui::SetNextWindowSize(ImVec2(520, 0), ImGuiCond_Appearing);
+  if (ImGui::BeginPopupModal(kErrorPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextUnformatted(state.error.c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("OK", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)))
+      ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+fs::path example_project(const EditorState& state, int number) {
+  static const char* const kExamples[] = {"textured_spheres", "emissive_mirror_glass",
+                                          "glass_glossy_checker", "roughness_ladder"};
+  if (number < 1 || number > 4 || state.projects_dir.empty()) return {};
+  return state.projects_dir / (std::string(kExamples[number - 1]) + ".glint");
+}
+
+fs::path find_projects_dir(const std::vector<fs::path>& starts) {
+  std::error_code ec;
+  for (fs::path dir : starts) {
+    dir = fs::absolute(dir, ec);
+    for (int up = 0; up < 8 && !dir.empty(); ++up) {
+      if (fs::exists(dir / "projects" / "default.glint", ec)) return dir / "projects";
+      if (dir == dir.parent_path()) break;
+      dir = dir.parent_path();
+    }
+  }
+  return {};
+}
+
+}  // namespace glint

@@ -1,0 +1,74 @@
+// One frame of the editor's UI: fixed panels around the viewport (no docking), the status bar.
+#include <cstdio>
+
+#include "editor/ui.h"
+
+namespace glint {
+namespace {
+
+constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                         ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                                         ImGuiWindowFlags_NoBringToFrontOnFocus;
+
+}  // namespace
+
+void draw_status_bar(Document& doc, EditorState& state) {
+  const FrameStats& s = state.stats;
+  char text[512];
+  int n = std::snprintf(text, sizeof text, "%lld spp   %.1f spp/s   %.1f ms/frame   %dx%d",
+                        static_cast<long long>(s.spp), s.spp_per_second, s.ms_per_frame, s.trace_width,
+                        s.trace_height);
+  float full_w = state.viewport_size.x * state.framebuffer_scale;
+  if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
+    n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));
+  std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
+  ImGui::TextUnformatted(text);
+  if (!state.message.empty() && ImGui::GetTime() < state.message_until) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(1, 0.85f, 0.4f, 1), "  |  %s", state.message.c_str());
+  } else if (state.export_job && state.export_job->state() == ExportJob::State::running) {
+    ImGui::SameLine();
+    ImGui::TextColored(ImVec4(0.5f, 0.9f, 1, 1), "  |  exporting %.0f%%", state.export_job->progress() * 100);
+  }
+}
+
+void draw_editor_ui(Document& doc, EditorState& state) {
+  ImGuiIO& io = ImGui::GetIO();
+  state.framebuffer_scale = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
+  state.interacting = false;
+
+  handle_shortcuts(doc, state);
+  draw_main_menu(doc, state);
+
+  // Layout: menu bar on top, status bar below, outliner left, properties right, viewport between.
+  const float W = io.DisplaySize.x, H = io.DisplaySize.y;
+  const float menu_h = ImGui::GetFrameHeight();
+  const float status_h = ImGui::GetFrameHeight() + 4;
+  float left = std::min(state.left_width, W * 0.3f), right = std::min(state.right_width, W * 0.35f);
+  const float body_h = std::max(1.0f, H - menu_h - status_h);
+  state.viewport_pos = ImVec2(left, menu_h);
+  state.viewport_size = ImVec2(std::max(1.0f, W - left - right), body_h);
+
+  ImGui::SetNextWindowPos(ImVec2(0, menu_h));
+  ImGui::SetNextWindowSize(ImVec2(left, body_h));
+  if (ImGui::Begin("Outliner", nullptr, kPanelFlags)) draw_outliner(doc, state);
+  ImGui::End();
+
+  ImGui::SetNextWindowPos(ImVec2(W - right, menu_h));
+  ImGui::SetNextWindowSize(ImVec2(right, body_h));
+  if (ImGui::Begin("Properties", nullptr, kPanelFlags)) draw_properties(doc, state);
+  ImGui::End();
+
+  ImGui::SetNextWindowPos(ImVec2(0, H - status_h));
+  ImGui::SetNextWindowSize(ImVec2(W, status_h));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 3));
+  if (ImGui::Begin("Status", nullptr, kPanelFlags | ImGuiWindowFlags_NoDecoration)) draw_status_bar(doc, state);
+  ImGui::End();
+  ImGui::PopStyleVar();
+
+  draw_viewport(doc, state);
+  draw_export_dialog(doc, state);
+  draw_document_modals(doc, state);
+}
+
+}  // namespace glint

@@ -1,0 +1,151 @@
+// The main menu bar and the keyboard shortcuts.
+#define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
+#include <GLFW/glfw3.h>  // key codes only: the GLFW backend fills io.KeysDown by GLFW key
+
+#include "editor/camera_control.h"
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+
+namespace glint {
+namespace {
+
+bool key_pressed(int key) { return ImGui::IsKeyPressed(key, false); }
+
+// A sphere around the selection, for "frame selection".
+bool selection_bounds(const Scene& scene, Selection sel, glm::vec3& center, float& radius) {
+  if (sel.kind == SelectionKind::sphere && sel.index >= 0 && sel.index < int(scene.spheres.size())) {
+    center = scene.spheres[sel.index].center;
+    radius = scene.spheres[sel.index].radius;
+    return true;
+  }
+  if (sel.kind == SelectionKind::quad && sel.index >= 0 && sel.index < int(scene.quads.size())) {
+    const Quad& q = scene.quads[sel.index];
+    center = (q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25f;
+    radius = 0;
+    for (const glm::vec3& c : q.corners) radius = std::max(radius, glm::length(c - center));
+    return true;
+  }
+  return false;
+}
+
+void frame_selection(Document& doc) {
+  glm::vec3 c;
+  float r;
+  if (selection_bounds(doc.scene, doc.selection, c, r)) frame(doc.scene.camera, c, r);
+}
+
+void delete_selection(Document& doc) {
+  SelectionKind k = doc.selection.kind;
+  if (k == SelectionKind::sphere || k == SelectionKind::quad || k == SelectionKind::material ||
+      k == SelectionKind::texture)
+    doc.selection = remove(doc.scene, doc.selection);
+}
+
+}  // namespace
+
+void handle_shortcuts(Document& doc, EditorState& state) {
+  ImGuiIO& io = ImGui::GetIO();
+  // Text fields own the keyboard; a modal popup blocks the editor's shortcuts too.
+  if (io.WantTextInput || ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel))
+    return;
+  if (io.KeyCtrl) {
+    if (key_pressed(GLFW_KEY_Z)) {
+      if (io.KeyShift) { if (doc.can_redo()) doc.redo(); }
+      else if (doc.can_undo()) doc.undo();
+    }
+    if (key_pressed(GLFW_KEY_Y) && doc.can_redo()) doc.redo();
+    if (key_pressed(GLFW_KEY_S)) save_document(doc, state, io.KeyShift);
+    if (key_pressed(GLFW_KEY_O)) request_action(doc, state, DocAction::open_dialog);
+    if (key_pressed(GLFW_KEY_N)) request_action(doc, state, DocAction::new_document);
+    if (key_pressed(GLFW_KEY_Q)) request_action(doc, state, DocAction::quit);
+    return;
+  }
+  if (key_pressed(ImGui::GetKeyIndex(ImGuiKey_Delete))) delete_selection(doc);
+  if (key_pressed(GLFW_KEY_F)) frame_selection(doc);
+  for (int n = 1; n <= 4; ++n)
+    if (key_pressed(GLFW_KEY_1 + n - 1)) {
+      auto file = example_project(state, n);
+      if (file.empty()) show_error(state, "The example projects folder was not found.");
+      else request_action(doc, state, DocAction::open_path, file);
+    }
+  // WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
+  glm::vec3 move{0};
+  if (ImGui::IsKeyDown(GLFW_KEY_W)) move.z += 1;
+  if (ImGui::IsKeyDown(GLFW_KEY_S)) move.z -= 1;
+  if (ImGui::IsKeyDown(GLFW_KEY_D)) move.x += 1;
+  if (ImGui::IsKeyDown(GLFW_KEY_A)) move.x -= 1;
+  if (ImGui::IsKeyDown(GLFW_KEY_E)) move.y += 1;
+  if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.y -= 1;
+  if (move != glm::vec3(0)) {
+    Camera& cam = doc.scene.camera;
+    float speed = std::max(0.5f, glm::length(cam.target - cam.position)) * 0.8f;
+    fly(cam, move * speed * std::min(io.DeltaTime, 0.1f));
+    state.interacting = true;  // holding a key is one undo step, like a drag
+  }
+}
+
+void draw_main_menu(Document& doc, EditorState& state) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("New", "Ctrl+N")) request_action(doc, state, DocAction::new_document);
+    if (ImGui::MenuItem("Open...", "Ctrl+O")) request_action(doc, state, DocAction::open_dialog);
+    if (ImGui::BeginMenu("Open Recent", !state.recent_files.empty())) {
+      for (const auto& f : state.recent_files)
+        if (ImGui::MenuItem(f.string().c_str())) request_action(doc, state, DocAction::open_path, f);
+      ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Examples", !state.projects_dir.empty())) {
+      for (int n = 1; n <= 4; ++n) {
+        auto file = example_project(state, n);
+        std::string key = std::to_string(n);
+        if (ImGui::MenuItem(file.stem().string().c_str(), key.c_str()))
+          request_action(doc, state, DocAction::open_path, file);
+      }
+      ImGui::Separator();
+      if (ImGui::MenuItem("default")) request_action(doc, state, DocAction::open_path, state.projects_dir / "default.glint");
+      if (ImGui::MenuItem("cornell_box")) request_action(doc, state, DocAction::open_path, state.projects_dir / "cornell_box.glint");
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save_document(doc, state, false);
+    if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) save_document(doc, state, true);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Export Render...")) state.show_export = true;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_action(doc, state, DocAction::quit);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, doc.can_undo())) doc.undo();
+    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, doc.can_redo())) doc.redo();
+    ImGui::Separator();
+    bool object = doc.selection.kind != SelectionKind::none && doc.selection.kind != SelectionKind::camera &&
+                  doc.selection.kind != SelectionKind::environment;
+    if (ImGui::MenuItem("Duplicate", nullptr, false, object))
+      doc.selection.index = duplicate(doc.scene, doc.selection);
+    if (ImGui::MenuItem("Delete", "Del", false, object)) delete_selection(doc);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Add")) {
+    if (ImGui::MenuItem("Sphere")) doc.selection = {SelectionKind::sphere, add_sphere(doc.scene)};
+    if (ImGui::MenuItem("Quad")) doc.selection = {SelectionKind::quad, add_quad(doc.scene)};
+    ImGui::Separator();
+    static const MaterialType kTypes[] = {MaterialType::matte, MaterialType::reflective,
+                                          MaterialType::glossy, MaterialType::transparent};
+    for (MaterialType t : kTypes)
+      if (ImGui::MenuItem((std::string("Material: ") + to_string(t)).c_str()))
+        doc.selection = {SelectionKind::material, add_material(doc.scene, t)};
+    if (ImGui::MenuItem("Texture from file...")) choose_file(doc, state, FilePurpose::add_texture);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Frame selection", "F")) frame_selection(doc);
+    ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.focus_tool);
+    if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
+    if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};
+    ImGui::EndMenu();
+  }
+  ImGui::EndMainMenuBar();
+}
+
+}  // namespace glint

@@ -1,0 +1,246 @@
+// The properties panel: whatever is selected (sphere, quad, material, texture, environment,
+// camera), and below it the display settings, which only re-run the tonemap pass.
+#include <cstdio>
+
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+
+namespace glint {
+namespace {
+
+constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp;
+
+// ImGui 1.86 has no SeparatorText.
+void section_title(const char* text) {
+  ImGui::Spacing();
+  ImGui::TextColored(ImVec4(0.55f, 0.75f, 1.0f, 1.0f), "%s", text);
+  ImGui::Separator();
+}
+
+ImTextureID tex_id(unsigned t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t)); }
+
+void name_field(Document& doc, EditorState& state, Selection sel) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s", name_of(doc.scene, sel).c_str());
+  if (ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue) &&
+      !rename(doc.scene, sel, buf))
+    show_message(state, std::string("The name '") + buf + "' is empty or taken");
+}
+
+// A combo of names; "(none)" first when allow_none. Returns true when changed.
+template <typename List>
+bool name_combo(const char* label, std::string& value, const List& items, bool allow_none) {
+  bool changed = false;
+  if (ImGui::BeginCombo(label, value.empty() ? "(none)" : value.c_str())) {
+    if (allow_none && ImGui::Selectable("(none)", value.empty())) {
+      value.clear();
+      changed = true;
+    }
+    for (const auto& item : items)
+      if (ImGui::Selectable(item.name.c_str(), item.name == value)) {
+        value = item.name;
+        changed = true;
+      }
+    ImGui::EndCombo();
+  }
+  return changed;
+}
+
+void material_combo(Document& doc, std::string& material) {
+  name_combo("Material", material, doc.scene.materials, false);
+  int m = find_material(doc.scene, material);
+  if (m >= 0) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Edit")) doc.selection = {SelectionKind::material, m};
+  }
+}
+
+void texture_slot(Document& doc, EditorState& state, int material, int slot, const char* label) {
+  Material& m = doc.scene.materials[material];
+  std::string& value = slot == 0 ? m.color_texture : slot == 1 ? m.emission_texture : m.roughness_texture;
+  ImGui::PushID(slot);
+  int t = find_texture(doc.scene, value);
+  unsigned thumb = t >= 0 ? state.thumbnails.get(resolve_asset_path(doc.scene, doc.scene.textures[t].path), 64) : 0;
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(32, 32));
+  else ImGui::Dummy(ImVec2(32, 32));
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110);
+  name_combo(label, value, doc.scene.textures, true);
+  if (ImGui::SmallButton("File...")) {
+    state.slot_material = material;
+    state.slot_index = slot;
+    choose_file(doc, state, FilePurpose::texture_slot);
+  }
+  ImGui::EndGroup();
+  ImGui::PopID();
+}
+
+void sphere_properties(Document& doc, EditorState& state, int i) {
+  Sphere& s = doc.scene.spheres[i];
+  name_field(doc, state, doc.selection);
+  ImGui::DragFloat3("Centre", &s.center.x, 0.01f);
+  ImGui::DragFloat("Radius", &s.radius, 0.005f, 1e-4f, 1e6f, "%.4f", kClamp);
+  material_combo(doc, s.material);
+}
+
+void quad_properties(Document& doc, EditorState& state, int i) {
+  Quad& q = doc.scene.quads[i];
+  name_field(doc, state, doc.selection);
+  material_combo(doc, q.material);
+  section_title("Placement");
+  QuadPlacement p = quad_placement(q);
+  bool changed = ImGui::DragFloat3("Centre", &p.center.x, 0.01f);
+  changed |= ImGui::DragFloat2("Size", &p.size.x, 0.01f, 1e-3f, 1e6f, "%.3f", kClamp);
+  changed |= ImGui::DragFloat3("Rotation", &p.rotation_deg.x, 0.5f, -360, 360, "%.1f deg");
+  if (changed) set_quad_placement(q, p);
+  if (ImGui::TreeNode("Corners")) {
+    for (int c = 0; c < 4; ++c) {
+      char label[16];
+      std::snprintf(label, sizeof label, "p%d", c);
+      ImGui::DragFloat3(label, &q.corners[c].x, 0.01f);
+    }
+    ImGui::TextDisabled("p3 is opposite p0");
+    ImGui::TreePop();
+  }
+  if (ImGui::TreeNode("Texture coordinates")) {
+    for (int c = 0; c < 4; ++c) {
+      char label[16];
+      std::snprintf(label, sizeof label, "uv%d", c);
+      ImGui::DragFloat2(label, &q.uvs[c].x, 0.01f);
+    }
+    ImGui::TreePop();
+  }
+}
+
+void material_properties(Document& doc, EditorState& state, int i) {
+  Material& m = doc.scene.materials[i];
+  name_field(doc, state, doc.selection);
+  static const char* const kTypes[] = {"matte", "reflective", "glossy", "transparent"};
+  int type = static_cast<int>(m.type);
+  if (ImGui::Combo("Type", &type, kTypes, 4)) m.type = static_cast<MaterialType>(type);
+  ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
+  texture_slot(doc, state, i, 0, "Colour tex");
+  ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  float strength = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
+  if (strength > 0 && ImGui::DragFloat("Strength", &strength, 0.05f, 1e-3f, 1e4f, "%.3f", kClamp)) {
+    float old = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
+    m.emission *= strength / old;  // scales the colour, keeping its hue
+  }
+  texture_slot(doc, state, i, 1, "Emission tex");
+  ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
+  texture_slot(doc, state, i, 2, "Rough. tex");
+  ImGui::DragFloat("IOR", &m.ior, 0.005f, 1.0f, 4.0f, "%.3f", kClamp);
+  ImGui::SliderFloat("Opacity", &m.opacity, 0, 1, "%.3f", kClamp);
+  int users = 0;
+  for (const Sphere& s : doc.scene.spheres) users += s.material == m.name;
+  for (const Quad& q : doc.scene.quads) users += q.material == m.name;
+  ImGui::TextDisabled("used by %d object(s)", users);
+  // Assign to the previously selected object is awkward without it: offer the objects here.
+  if (ImGui::BeginCombo("Assign to", "choose an object")) {
+    for (Sphere& s : doc.scene.spheres)
+      if (ImGui::Selectable(("sphere " + s.name).c_str(), s.material == m.name)) s.material = m.name;
+    for (Quad& q : doc.scene.quads)
+      if (ImGui::Selectable(("quad " + q.name).c_str(), q.material == m.name)) q.material = m.name;
+    ImGui::EndCombo();
+  }
+}
+
+void texture_properties(Document& doc, EditorState& state, int i) {
+  Texture& t = doc.scene.textures[i];
+  name_field(doc, state, doc.selection);
+  ImGui::TextWrapped("File: %s", t.path.c_str());
+  unsigned thumb = state.thumbnails.get(resolve_asset_path(doc.scene, t.path), 160);
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(160, 160));
+  else ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "cannot read the image");
+}
+
+void environment_properties(Document& doc, EditorState& state) {
+  Environment& e = doc.scene.environment;
+  bool textured = !e.texture.empty();
+  if (textured) {
+    ImGui::TextWrapped("HDR map: %s", e.texture.c_str());
+    if (ImGui::SmallButton("Use a colour instead")) e.texture.clear();
+    ImGui::SameLine();
+  } else {
+    ImGui::ColorEdit3("Colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+  }
+  if (ImGui::SmallButton(textured ? "Other HDR file..." : "HDR file...")) choose_file(doc, state, FilePurpose::environment);
+  ImGui::DragFloat("Intensity", &e.intensity, 0.01f, 0, 1e4f, "%.3f", kClamp);
+  ImGui::DragFloat("Rotation", &e.rotation_deg, 0.5f, -360, 360, "%.1f deg", kClamp);
+}
+
+void camera_properties(Document& doc) {
+  Camera& c = doc.scene.camera;
+  ImGui::DragFloat3("Position", &c.position.x, 0.01f);
+  ImGui::DragFloat3("Target", &c.target.x, 0.01f);
+  ImGui::SliderFloat("Field of view", &c.vfov_deg, 1, 150, "%.1f deg", kClamp);
+  ImGui::DragFloat("Aperture", &c.aperture_radius, 0.001f, 0, 10, "%.4f", kClamp);
+  ImGui::DragFloat("Focus distance", &c.focus_distance, 0.01f, 1e-3f, 1e6f, "%.3f", kClamp);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("Ctrl+click in the viewport focuses there");
+  ImGui::PopStyleColor();
+  section_title("Render");
+  ImGui::SliderInt("Max bounces", &doc.scene.render.max_bounces, 0, 64, "%d", kClamp);
+  int seed = static_cast<int>(doc.scene.render.seed);
+  if (ImGui::InputInt("Seed", &seed) && seed >= 0) doc.scene.render.seed = static_cast<uint32_t>(seed);
+  int film[2] = {doc.scene.film.width, doc.scene.film.height};
+  if (ImGui::InputInt2("Film size", film) && film[0] > 0 && film[1] > 0)
+    doc.scene.film = {film[0], film[1]};
+}
+
+}  // namespace
+
+void draw_properties(Document& doc, EditorState& state) {
+  Selection sel = doc.selection;
+  Scene& s = doc.scene;
+  ImGui::PushItemWidth(-110);
+  auto valid = [](int i, size_t n) { return i >= 0 && i < static_cast<int>(n); };
+  if (sel.kind == SelectionKind::sphere && valid(sel.index, s.spheres.size())) {
+    section_title("Sphere");
+    sphere_properties(doc, state, sel.index);
+  } else if (sel.kind == SelectionKind::quad && valid(sel.index, s.quads.size())) {
+    section_title("Quad");
+    quad_properties(doc, state, sel.index);
+  } else if (sel.kind == SelectionKind::material && valid(sel.index, s.materials.size())) {
+    section_title("Material");
+    material_properties(doc, state, sel.index);
+  } else if (sel.kind == SelectionKind::texture && valid(sel.index, s.textures.size())) {
+    section_title("Texture");
+    texture_properties(doc, state, sel.index);
+  } else if (sel.kind == SelectionKind::environment) {
+    section_title("Environment");
+    environment_properties(doc, state);
+  } else {
+    section_title("Camera");
+    camera_properties(doc);
+  }
+  // The selected object's material right below it: the common edit needs no second click.
+  std::string* material = nullptr;
+  if (sel.kind == SelectionKind::sphere && valid(sel.index, s.spheres.size())) material = &s.spheres[sel.index].material;
+  if (sel.kind == SelectionKind::quad && valid(sel.index, s.quads.size())) material = &s.quads[sel.index].material;
+  if (material) {
+    int m = find_material(s, *material);
+    if (m >= 0 && ImGui::CollapsingHeader(("Material: " + *material).c_str())) {
+      ImGui::PushID("inline material");
+      Selection saved = doc.selection;
+      doc.selection = {SelectionKind::material, m};  // name_field renames what is selected
+      material_properties(doc, state, m);
+      if (doc.selection == Selection{SelectionKind::material, m}) doc.selection = saved;
+      ImGui::PopID();
+    }
+  }
+
+  section_title("Display");
+  // Exposure and tonemap only re-run the tonemap pass (the renderer's display digest).
+  ImGui::SliderFloat("Exposure", &s.display.exposure, -10, 10, "%.2f stops", kClamp);
+  int tonemap = static_cast<int>(s.display.tonemap);
+  static const char* const kTonemaps[] = {"filmic", "linear"};
+  if (ImGui::Combo("Tonemap", &tonemap, kTonemaps, 2)) s.display.tonemap = static_cast<Tonemap>(tonemap);
+  int res = static_cast<int>(state.resolution);
+  static const char* const kResolutions[] = {"auto (fluid UI)", "full", "1/2", "1/4"};
+  if (ImGui::Combo("Preview", &res, kResolutions, 4)) state.resolution = static_cast<ViewportResolution>(res);
+  ImGui::PopItemWidth();
+}
+
+}  // namespace glint

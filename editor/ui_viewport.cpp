@@ -1,0 +1,206 @@
+// The viewport: the progressive render, click to select or focus, a translate gizmo drawn with
+// ImGui's draw list, and mouse navigation (orbit, pan, zoom).
+#include <cmath>
+
+#include "editor/camera_control.h"
+#include "editor/picking.h"
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+
+namespace glint {
+namespace {
+
+const ImU32 kAxisColors[3] = {IM_COL32(230, 70, 70, 255), IM_COL32(80, 210, 80, 255), IM_COL32(80, 130, 255, 255)};
+
+float segment_distance(ImVec2 p, ImVec2 a, ImVec2 b) {
+  ImVec2 ab{b.x - a.x, b.y - a.y}, ap{p.x - a.x, p.y - a.y};
+  float len2 = ab.x * ab.x + ab.y * ab.y;
+  float t = len2 > 0 ? std::clamp((ap.x * ab.x + ap.y * ab.y) / len2, 0.0f, 1.0f) : 0.0f;
+  float dx = ap.x - t * ab.x, dy = ap.y - t * ab.y;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+struct Gizmo {
+  bool visible = false;
+  glm::vec3 center{0};
+  float length = 1;  // world units
+  ImVec2 origin{0, 0}, ends[3] = {};
+  bool end_visible[3] = {false, false, false};
+};
+
+Gizmo make_gizmo(const Document& doc, ImVec2 viewport_origin, ImVec2 size) {
+  Gizmo g;
+  auto center = selection_center(doc.scene, doc.selection);
+  if (!center) return g;
+  const Camera& cam = doc.scene.camera;
+  glm::vec2 o;
+  if (!project_to_viewport(cam, {size.x, size.y}, *center, o)) return g;
+  // A constant screen size: a fraction of the view height at the object's depth.
+  glm::vec3 forward = glm::normalize(cam.target - cam.position);
+  float depth = std::max(1e-4f, glm::dot(*center - cam.position, forward));
+  g.length = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
+  g.center = *center;
+  g.origin = ImVec2(viewport_origin.x + o.x, viewport_origin.y + o.y);
+  for (int a = 0; a < 3; ++a) {
+    glm::vec3 axis(0);
+    axis[a] = 1;
+    glm::vec2 e;
+    g.end_visible[a] = project_to_viewport(cam, {size.x, size.y}, *center + axis * g.length, e);
+    g.ends[a] = ImVec2(viewport_origin.x + e.x, viewport_origin.y + e.y);
+  }
+  g.visible = true;
+  return g;
+}
+
+void draw_gizmo(const Gizmo& g, int hover, int active) {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  for (int a = 0; a < 3; ++a) {
+    if (!g.end_visible[a]) continue;
+    float thick = (a == hover || a == active) ? 5.0f : 3.0f;
+    ImU32 col = (a == active) ? IM_COL32(255, 230, 80, 255) : kAxisColors[a];
+    dl->AddLine(g.origin, g.ends[a], IM_COL32(0, 0, 0, 160), thick + 2);
+    dl->AddLine(g.origin, g.ends[a], col, thick);
+    dl->AddCircleFilled(g.ends[a], thick + 3, col);
+  }
+  dl->AddCircleFilled(g.origin, 4, IM_COL32(255, 255, 255, 220));
+}
+
+}  // namespace
+
+bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm::vec2& out) {
+  // The inverse of the shader's camera_ray (shaders/lib/camera.glsl) through the lens centre.
+  glm::vec3 forward = glm::normalize(camera.target - camera.position);
+  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  glm::vec3 up = glm::cross(right, forward);
+  glm::vec3 v = p - camera.position;
+  float z = glm::dot(v, forward);
+  if (z <= 1e-6f) return false;
+  float tan_half = std::tan(glm::radians(camera.vfov_deg) * 0.5f);
+  float aspect = size.x / std::max(1.0f, size.y);
+  float sx = glm::dot(v, right) / z / (tan_half * aspect);
+  float sy = glm::dot(v, up) / z / tan_half;
+  out = {(sx + 1) * 0.5f * size.x, (1 - sy) * 0.5f * size.y};
+  return true;
+}
+
+void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focus) {
+  float aspect = state.viewport_size.x / std::max(1.0f, state.viewport_size.y);
+  auto hit = pick(doc.scene, film, aspect);
+  if (focus) {
+    if (!hit) return show_message(state, "Nothing there to focus on");
+    doc.scene.camera.focus_distance = focus_distance_for(doc.scene.camera, hit->point);
+    char text[96];
+    std::snprintf(text, sizeof text, "Focus distance %.3f (on %s)", doc.scene.camera.focus_distance,
+                  name_of(doc.scene, hit->what).c_str());
+    show_message(state, text);
+    return;
+  }
+  doc.selection = hit ? hit->what : Selection{};
+}
+
+void draw_viewport(Document& doc, EditorState& state) {
+  ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(state.viewport_pos);
+  ImGui::SetNextWindowSize(state.viewport_size);
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
+  ImGui::Begin("Viewport", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
+  ImGui::PopStyleVar(2);
+  ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImVec2 size = ImGui::GetContentRegionAvail();
+  size.x = std::max(size.x, 1.0f);
+  size.y = std::max(size.y, 1.0f);
+
+  // One item over the whole image: ImGui then knows a drag here is in progress.
+  ImGui::InvisibleButton("##viewport", size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  const bool hovered = ImGui::IsItemHovered();
+  Gizmo gizmo = make_gizmo(doc, origin, size);
+  state.gizmo_hover = -1;
+  // Ctrl+click and the focus tool always focus, even on the gizmo.
+  const bool focusing = state.focus_tool || io.KeyCtrl;
+  if (gizmo.visible && hovered && !focusing && state.gizmo_axis < 0 && state.camera_button < 0)
+    for (int a = 0; a < 3; ++a)
+      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < 7) state.gizmo_hover = a;
+
+  // Presses start a gizmo drag or a camera gesture.
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.gizmo_hover >= 0) {
+    state.gizmo_axis = state.gizmo_hover;
+    state.gizmo_start_center = gizmo.center;
+    state.gizmo_start_mouse = io.MousePos;
+    const ImVec2& e = gizmo.ends[state.gizmo_axis];
+    state.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
+    state.gizmo_length = gizmo.length;
+  } else if (hovered && state.camera_button < 0) {
+    for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
+      if (ImGui::IsMouseClicked(b)) {
+        state.camera_button = b;
+        state.camera_moved = false;
+        state.press_pos = io.MousePos;
+        break;
+      }
+  }
+
+  if (state.gizmo_axis >= 0) {
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      // Move along the axis by the mouse motion projected on the handle's screen direction.
+      ImVec2 s = state.gizmo_axis_screen;
+      float s2 = s.x * s.x + s.y * s.y;
+      ImVec2 m{io.MousePos.x - state.gizmo_start_mouse.x, io.MousePos.y - state.gizmo_start_mouse.y};
+      float along = s2 > 1e-6f ? (m.x * s.x + m.y * s.y) / s2 * state.gizmo_length : 0.0f;
+      glm::vec3 axis(0);
+      axis[state.gizmo_axis] = 1;
+      auto now = selection_center(doc.scene, doc.selection);
+      if (now) {
+        glm::vec3 delta = state.gizmo_start_center + axis * along - *now;
+        if (glm::length(delta) > 0) translate(doc.scene, doc.selection, delta);
+      }
+      state.interacting = true;
+    } else {
+      state.gizmo_axis = -1;
+    }
+  } else if (state.camera_button >= 0) {
+    int b = state.camera_button;
+    if (ImGui::IsMouseDown(b)) {
+      ImVec2 d = io.MouseDelta;
+      float moved = std::hypot(io.MousePos.x - state.press_pos.x, io.MousePos.y - state.press_pos.y);
+      if (moved > 3) state.camera_moved = true;
+      if (state.camera_moved && (d.x != 0 || d.y != 0)) {
+        Camera& cam = doc.scene.camera;
+        bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
+        if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
+        else orbit(cam, -d.x * 0.008f, -d.y * 0.008f);
+      }
+      if (state.camera_moved) state.interacting = true;
+    } else {
+      if (b == ImGuiMouseButton_Left && !state.camera_moved) {
+        glm::vec2 film{(state.press_pos.x - origin.x) / size.x, (state.press_pos.y - origin.y) / size.y};
+        click_viewport(doc, state, film, focusing);
+      }
+      state.camera_button = -1;
+    }
+  }
+  if (hovered && io.MouseWheel != 0) dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
+
+  // The edits of this frame are in: bring the image up to date, then show it.
+  if (state.render_viewport) state.render_viewport(doc, state);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  ImVec2 end(origin.x + size.x, origin.y + size.y);
+  if (state.display_texture)
+    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(state.display_texture)), origin, end);
+  else
+    dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+  if (!state.stats.scene_problem.empty())
+    dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
+                ("Not rendering: " + state.stats.scene_problem).c_str());
+  gizmo = make_gizmo(doc, origin, size);  // where the object is now
+  if (gizmo.visible) draw_gizmo(gizmo, state.gizmo_hover, state.gizmo_axis);
+  if (state.focus_tool)
+    dl->AddText(ImVec2(origin.x + 10, end.y - 24), IM_COL32(255, 230, 120, 255), "Focus tool: click a surface");
+  ImGui::End();
+}
+
+}  // namespace glint

@@ -1,0 +1,101 @@
+#include "editor/viewport_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <epoxy/gl.h>
+
+#include "renderer/gl_context.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+ViewportRenderer::ViewportRenderer() {}
+
+void ViewportRenderer::render(Document& doc, EditorState& state) {
+  auto now = std::chrono::steady_clock::now();
+  if (last_frame_.time_since_epoch().count() != 0) {
+    double ms = std::chrono::duration<double, std::milli>(now - last_frame_).count();
+    state.stats.ms_per_frame = state.stats.ms_per_frame > 0 ? 0.9 * state.stats.ms_per_frame + 0.1 * ms : ms;
+    budget_.record_frame(ms * 1e-3, last_trace_seconds_);
+  }
+  last_trace_seconds_ = 0;
+  last_frame_ = now;
+  if (state.stats.gl_renderer.empty()) state.stats.gl_renderer = gl_renderer_name();
+
+  // Trace at framebuffer pixels (HiDPI), divided down when the device is too slow for that.
+  const int full_w = std::max(1, int(std::lround(state.viewport_size.x * state.framebuffer_scale)));
+  const int full_h = std::max(1, int(std::lround(state.viewport_size.y * state.framebuffer_scale)));
+  int divisor = 1;
+  switch (state.resolution) {
+    case ViewportResolution::automatic: divisor = budget_.divisor(); break;
+    case ViewportResolution::full: divisor = 1; break;
+    case ViewportResolution::half: divisor = 2; break;
+    case ViewportResolution::quarter: divisor = 4; break;
+  }
+  const int w = std::max(1, (full_w + divisor - 1) / divisor);
+  const int h = std::max(1, (full_h + divisor - 1) / divisor);
+
+  // An invalid value typed into a field (a zero-area quad, say) keeps the last good image.
+  auto problems = validate_scene(doc.scene, false);
+  state.stats.scene_problem = problems.empty() ? "" : problems.front().what();
+  bool synced = false;
+  if (problems.empty()) {
+    try {
+      renderer_.sync(doc.scene, w, h);
+      synced = true;
+    } catch (const std::exception& e) {
+      state.stats.scene_problem = e.what();  // an unreadable image: previous state kept
+    }
+  }
+
+  // The export gets the device while it runs; the viewport waits.
+  const bool exporting = state.export_job && state.export_job->state() == ExportJob::State::running;
+  if (exporting) {
+    step_export(state, budget_.config().trace_seconds);
+  } else if (synced && renderer_.sample_count() < max_spp_) {
+    const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
+    int k = budget_.samples(pixels);
+    k = static_cast<int>(std::min<int64_t>(k, max_spp_ - renderer_.sample_count()));
+    auto t0 = std::chrono::steady_clock::now();
+    renderer_.trace(k);
+    glFinish();  // the budget needs the pass's real time
+    double seconds = since(t0);
+    last_trace_seconds_ = seconds;
+    budget_.record(k, pixels, seconds, int64_t(full_w) * full_h);
+    rate_samples_ += k;
+  }
+  // Samples per pixel per second of wall-clock time, over half-second windows.
+  if (rate_start_.time_since_epoch().count() == 0) rate_start_ = now;
+  if (double span = since(rate_start_); span >= 0.5) {
+    spp_rate_ = rate_samples_ / span;
+    rate_samples_ = 0;
+    rate_start_ = std::chrono::steady_clock::now();
+  }
+  renderer_.update_display();
+
+  // A preview smaller than the viewport is scaled up smoothly rather than in blocks.
+  GLuint tex = renderer_.display_texture();
+  if (tex && tex != filtered_texture_) {
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    filtered_texture_ = tex;
+  }
+  state.display_texture = tex;
+  state.stats.spp = renderer_.sample_count();
+  state.stats.spp_per_second = spp_rate_;
+  state.stats.trace_width = renderer_.width();
+  state.stats.trace_height = renderer_.height();
+
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (fb_w_ > 0) glViewport(0, 0, fb_w_, fb_h_);
+}
+
+}  // namespace glint

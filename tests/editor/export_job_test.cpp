@@ -1,0 +1,129 @@
+// The export job on a headless EGL context: tiny PNG and EXR of the default project, cancel.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "editor/export_job.h"
+#include "renderer/gl_context.h"
+#include "renderer/image.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace {
+namespace fs = std::filesystem;
+
+class ExportJobTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    context_ = HeadlessGLContext::create();
+    scene_ = load_project(fs::path(GLINT_SOURCE_DIR) / "projects/default.glint");
+    dir_ = fs::temp_directory_path() / ("glint-export-test-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Steps like the UI does, a slice per "frame"; returns the number of slices.
+  int run(ExportJob& job) {
+    int slices = 0;
+    while (job.step(0.01)) ++slices;
+    return slices;
+  }
+
+  std::unique_ptr<HeadlessGLContext> context_;
+  Scene scene_;
+  fs::path dir_;
+};
+
+TEST_F(ExportJobTest, WritesATonemappedPngOfTheRequestedSize) {
+  ExportSettings s;
+  s.width = 32;
+  s.height = 24;
+  s.samples = 8;
+  s.output = dir_ / "out.png";
+  ExportJob job(scene_, s);
+  run(job);
+  ASSERT_EQ(job.state(), ExportJob::State::done) << job.error();
+  EXPECT_EQ(job.samples(), 8);
+  EXPECT_FLOAT_EQ(job.progress(), 1.0f);
+  Image img = load_image(s.output, ColorEncoding::linear);
+  EXPECT_EQ(img.width, 32);
+  EXPECT_EQ(img.height, 24);
+  float lo = 1, hi = 0;
+  for (size_t i = 0; i < img.pixels.size(); i += 4) {
+    lo = std::min(lo, img.pixels[i]);
+    hi = std::max(hi, img.pixels[i]);
+  }
+  EXPECT_LT(lo, hi);  // an image, not a flat colour
+}
+
+TEST_F(ExportJobTest, WritesLinearExrWithAlphaOneInSlices) {
+  ExportSettings s;
+  s.width = 32;
+  s.height = 32;
+  s.samples = 16;
+  s.output = dir_ / "out.exr";
+  ExportJob job(scene_, s);
+  // The first slice stops early enough that the UI would get its frame back.
+  EXPECT_TRUE(job.step(0.0) || job.state() == ExportJob::State::done);
+  EXPECT_LT(job.samples(), 16);
+  run(job);
+  ASSERT_EQ(job.state(), ExportJob::State::done) << job.error();
+  Image img = load_image(s.output, ColorEncoding::linear);
+  ASSERT_EQ(img.width, 32);
+  ASSERT_EQ(img.height, 32);
+  double sum = 0;
+  for (size_t i = 0; i < img.pixels.size(); i += 4) {
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(img.pixels[i + c]));
+      ASSERT_GE(img.pixels[i + c], 0.0f);
+      sum += img.pixels[i + c];
+    }
+    EXPECT_EQ(img.pixels[i + 3], 1.0f);
+  }
+  EXPECT_GT(sum, 0);
+}
+
+TEST_F(ExportJobTest, TimeBudgetStopsAfterItsTime) {
+  ExportSettings s;
+  s.width = 16;
+  s.height = 16;
+  s.use_time = true;
+  s.seconds = 0.2;
+  s.output = dir_ / "timed.hdr";
+  ExportJob job(scene_, s);
+  run(job);
+  ASSERT_EQ(job.state(), ExportJob::State::done) << job.error();
+  EXPECT_GE(job.elapsed_seconds(), 0.2);
+  EXPECT_GT(job.samples(), 0);
+  EXPECT_TRUE(fs::exists(s.output));
+}
+
+TEST_F(ExportJobTest, CancelWritesNothing) {
+  ExportSettings s;
+  s.width = 32;
+  s.height = 32;
+  s.samples = 1 << 20;
+  s.output = dir_ / "never.png";
+  ExportJob job(scene_, s);
+  job.step(0.0);
+  job.cancel();
+  EXPECT_EQ(job.state(), ExportJob::State::cancelled);
+  EXPECT_FALSE(job.step(0.01));
+  EXPECT_FALSE(fs::exists(s.output));
+}
+
+TEST_F(ExportJobTest, RejectsBadSettingsBeforeRendering) {
+  ExportSettings s;
+  s.output = dir_ / "x.jpg";
+  EXPECT_NE(validate_export_settings(s), "");
+  EXPECT_THROW(ExportJob(scene_, s), std::runtime_error);
+  s.output = dir_ / "no-such-folder" / "x.png";
+  EXPECT_NE(validate_export_settings(s).find("does not exist"), std::string::npos);
+  s.output = dir_ / "x.png";
+  s.width = 0;
+  EXPECT_NE(validate_export_settings(s), "");
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,97 @@
+// The frame-time controller as pure logic: simulated devices of known cost.
+#include <gtest/gtest.h>
+
+#include "editor/frame_budget.h"
+
+namespace glint {
+namespace {
+
+// Runs frames of a device that needs `cost` seconds per pixel-sample at a framebuffer of
+// full_pixels; returns the trace seconds of the last frame.
+double simulate(FrameBudget& b, double cost, int64_t full_pixels, int frames) {
+  double seconds = 0;
+  for (int i = 0; i < frames; ++i) {
+    int64_t pixels = full_pixels / (int64_t(b.divisor()) * b.divisor());
+    int k = b.samples(pixels);
+    seconds = cost * k * pixels;
+    b.record(k, pixels, seconds, full_pixels);
+  }
+  return seconds;
+}
+
+TEST(FrameBudget, SlowDeviceGetsACoarserPreviewWithinTheBudget) {
+  // llvmpipe-like: 0.35 M samples/s over a 700x750 viewport (one full sample takes 1.5 s).
+  FrameBudget b;
+  const int64_t full = 700 * 750;
+  double last = simulate(b, 1 / 0.35e6, full, 50);
+  EXPECT_GT(b.divisor(), 4);
+  EXPECT_LE(last, b.config().trace_seconds * 1.0001);
+  EXPECT_LE(b.divisor(), b.config().max_divisor);
+}
+
+TEST(FrameBudget, FastDeviceTracesFullResolutionWithManySamples) {
+  FrameBudget b;
+  const int64_t full = 1920 * 1080;
+  double last = simulate(b, 1e-10, full, 50);  // 10 G samples/s
+  EXPECT_EQ(b.divisor(), 1);
+  EXPECT_GT(b.samples(full), 10);
+  EXPECT_LE(b.samples(full), b.config().max_samples);
+  EXPECT_LE(last, b.config().trace_seconds * 1.0001);
+}
+
+TEST(FrameBudget, DivisorIsStableUnderNoise) {
+  // Measurements jittering by +-10% around a cost where the divisor sits near a boundary must
+  // not flip the resolution (each flip restarts the accumulation).
+  FrameBudget b;
+  const int64_t full = 800 * 600;
+  simulate(b, 2e-7, full, 30);
+  int settled = b.divisor();
+  int changes = 0;
+  for (int i = 0; i < 200; ++i) {
+    double cost = 2e-7 * (i % 2 ? 1.1 : 0.9);
+    int64_t pixels = full / (int64_t(b.divisor()) * b.divisor());
+    int k = b.samples(pixels);
+    int before = b.divisor();
+    b.record(k, pixels, cost * k * pixels, full);
+    changes += b.divisor() != before;
+  }
+  EXPECT_LE(changes, 1);
+  EXPECT_NEAR(b.divisor(), settled, 1);
+}
+
+TEST(FrameBudget, SlowdownCoarsensAtOnceSpeedupRefinesAfterAWhile) {
+  FrameBudget b;
+  const int64_t full = 640 * 480;
+  simulate(b, 1e-9, full, 30);
+  ASSERT_EQ(b.divisor(), 1);
+  // A heavy scene: the very next frame must already be coarser.
+  b.record(1, full, 1e-6 * full, full);
+  int coarse = b.divisor();
+  EXPECT_GT(coarse, 1);
+  // Cheap again: refines, but only after several consistent frames.
+  int64_t pixels = full / (int64_t(coarse) * coarse);
+  b.record(1, pixels, 1e-9 * pixels, full);
+  EXPECT_EQ(b.divisor(), coarse);
+  simulate(b, 1e-9, full, 30);
+  EXPECT_EQ(b.divisor(), 1);
+}
+
+TEST(FrameBudget, UiOverheadShrinksTheTraceBudget) {
+  FrameBudget b;
+  for (int i = 0; i < 100; ++i) b.record_frame(0.030, 0.010);  // 20 ms of UI per frame
+  EXPECT_NEAR(b.config().trace_seconds, b.config().frame_seconds - 0.020, 1e-3);
+  for (int i = 0; i < 100; ++i) b.record_frame(0.100, 0.0);  // UI alone over the target
+  EXPECT_DOUBLE_EQ(b.config().trace_seconds, b.config().min_trace_seconds);
+}
+
+TEST(FrameBudget, IgnoresMeaninglessMeasurements) {
+  FrameBudget b;
+  b.record(0, 100, 1.0, 100);
+  b.record(1, 0, 1.0, 100);
+  b.record(1, 100, 0.0, 100);
+  EXPECT_EQ(b.cost(), 0);
+  EXPECT_EQ(b.samples(1000), 1);
+}
+
+}  // namespace
+}  // namespace glint

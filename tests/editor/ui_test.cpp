@@ -1,0 +1,332 @@
+// The editor's UI driven headlessly: an ImGui context and a headless EGL context, no window.
+// Panels run for real frames with simulated mouse and keys; the viewport hook traces for real.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
+#include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
+
+#include "editor/picking.h"
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+#include "editor/viewport_renderer.h"
+#include "editor_test_util.h"
+#include "renderer/gl_context.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kProjects = fs::path(GLINT_SOURCE_DIR) / "projects";
+
+class UiTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    gl_ = HeadlessGLContext::create();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(800, 500);
+    io.DeltaTime = 1.0f / 60;
+    unsigned char* pixels;
+    int w, h;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(intptr_t(1)));
+    io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
+    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
+    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+    viewport_ = std::make_unique<ViewportRenderer>();
+    state_.render_viewport = [this](Document& d, EditorState& s) { viewport_->render(d, s); };
+    state_.resolution = ViewportResolution::quarter;  // tiny GL images
+    state_.projects_dir = kProjects;
+    open_document(doc_, state_, kProjects / "default.glint");
+    frame();
+  }
+  void TearDown() override {
+    state_.thumbnails.clear();
+    viewport_.reset();
+    ImGui::DestroyContext();
+  }
+
+  // One UI frame, as the app runs it.
+  void frame() {
+    ImGui::NewFrame();
+    // Popups are opened at the root of the ID stack, where a frame starts.
+    unsaved_prompt_open_ = ImGui::IsPopupOpen("Unsaved changes");
+    path_prompt_open_ = ImGui::IsPopupOpen("Choose a file");
+    draw_editor_ui(doc_, state_);
+    doc_.end_frame(ImGui::IsAnyItemActive() || state_.interacting);
+    ImGui::Render();
+  }
+  void press(int key, bool ctrl = false, bool shift = false) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.KeyCtrl = ctrl;
+    io.KeyShift = shift;
+    io.KeysDown[key] = true;
+    frame();
+    io.KeysDown[key] = false;
+    io.KeyCtrl = io.KeyShift = false;
+    frame();
+  }
+  // Screen position of a world point in the viewport.
+  ImVec2 screen(glm::vec3 p) {
+    glm::vec2 v;
+    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport_size.x, state_.viewport_size.y}, p, v));
+    return ImVec2(state_.viewport_pos.x + v.x, state_.viewport_pos.y + v.y);
+  }
+  void click(ImVec2 at, bool ctrl = false) {
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = at;
+    frame();
+    io.KeyCtrl = ctrl;
+    io.MouseDown[0] = true;
+    frame();
+    io.MouseDown[0] = false;
+    frame();
+    io.KeyCtrl = false;
+  }
+  // The sphere whose centre shows nearest the middle of the viewport (and picks as itself).
+  int visible_sphere() {
+    int best = -1;
+    float best_d = 1e30f;
+    for (size_t i = 0; i < doc_.scene.spheres.size(); ++i) {
+      glm::vec2 v;
+      if (!project_to_viewport(doc_.scene.camera, {state_.viewport_size.x, state_.viewport_size.y},
+                               doc_.scene.spheres[i].center, v))
+        continue;
+      glm::vec2 film = v / glm::vec2(state_.viewport_size.x, state_.viewport_size.y);
+      auto hit = pick(doc_.scene, film, state_.viewport_size.x / state_.viewport_size.y);
+      float d = glm::length(film - glm::vec2(0.5f));
+      if (hit && hit->what == Selection{SelectionKind::sphere, int(i)} && d < best_d) {
+        best = int(i);
+        best_d = d;
+      }
+    }
+    return best;
+  }
+
+  std::unique_ptr<HeadlessGLContext> gl_;
+  std::unique_ptr<ViewportRenderer> viewport_;
+  Document doc_;
+  EditorState state_;
+  bool unsaved_prompt_open_ = false, path_prompt_open_ = false;
+};
+
+TEST_F(UiTest, ViewportAccumulatesAndFillsTheCentre) {
+  for (int i = 0; i < 5; ++i) frame();
+  EXPECT_GE(state_.stats.spp, 5);
+  EXPECT_NE(state_.display_texture, 0u);
+  EXPECT_EQ(state_.stats.scene_problem, "");
+  EXPECT_GT(state_.viewport_size.x, 100);
+  EXPECT_GT(state_.viewport_pos.x, 0);  // outliner on the left
+  EXPECT_LT(state_.viewport_pos.x + state_.viewport_size.x, 800);  // properties on the right
+  EXPECT_EQ(state_.stats.trace_width, (int(state_.viewport_size.x) + 3) / 4);
+}
+
+TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
+  for (int i = 0; i < 3; ++i) frame();
+  GpuRenderer& r = viewport_->renderer();
+  const int w = r.width(), h = r.height();
+  const int64_t before = r.sample_count();
+  ASSERT_GT(before, 0);
+
+  doc_.scene.display.exposure += 1.5f;  // what the exposure slider writes
+  SyncResult s = r.sync(doc_.scene, w, h);
+  EXPECT_FALSE(s.accumulation_reset);
+  EXPECT_TRUE(s.display_changed);
+  EXPECT_EQ(r.sample_count(), before);
+  frame();  // and through the UI frame: still accumulating
+  EXPECT_GT(r.sample_count(), before);
+  doc_.scene.display.tonemap = Tonemap::linear;
+  int64_t more = r.sample_count();
+  frame();
+  EXPECT_GT(r.sample_count(), more);
+
+  doc_.scene.spheres[0].radius *= 1.1f;  // what the radius field writes
+  s = r.sync(doc_.scene, w, h);
+  EXPECT_TRUE(s.accumulation_reset);
+  EXPECT_EQ(r.sample_count(), 0);
+  doc_.scene.spheres[0].center.x += 0.1f;
+  frame();  // the frame syncs (reset) and traces one batch
+  EXPECT_LE(r.sample_count(), viewport_->budget().config().max_samples);
+}
+
+TEST_F(UiTest, ClickSelectsCtrlClickFocusesEmptyClickDeselects) {
+  int ball = visible_sphere();
+  ASSERT_GE(ball, 0);
+  const Sphere s = doc_.scene.spheres[ball];
+  click(screen(s.center));
+  EXPECT_EQ(doc_.selection, (Selection{SelectionKind::sphere, ball}));
+
+  float focus_before = doc_.scene.camera.focus_distance;
+  click(screen(s.center), /*ctrl=*/true);
+  auto hit = pick(doc_.scene, {(screen(s.center).x - state_.viewport_pos.x) / state_.viewport_size.x,
+                               (screen(s.center).y - state_.viewport_pos.y) / state_.viewport_size.y},
+                  state_.viewport_size.x / state_.viewport_size.y);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(doc_.scene.camera.focus_distance, focus_distance_for(doc_.scene.camera, hit->point), 1e-3);
+  EXPECT_NE(doc_.scene.camera.focus_distance, focus_before);
+  EXPECT_EQ(doc_.selection, (Selection{SelectionKind::sphere, ball}));  // focusing keeps the selection
+
+  click(ImVec2(state_.viewport_pos.x + state_.viewport_size.x * 0.5f, state_.viewport_pos.y + 3));  // the sky
+  EXPECT_EQ(doc_.selection.kind, SelectionKind::none);
+}
+
+TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
+  int ball = visible_sphere();
+  doc_.selection = {SelectionKind::sphere, ball};
+  frame();
+  const glm::vec3 c0 = doc_.scene.spheres[ball].center;
+  // Grab the x handle in its middle (the handle is 0.3 of the half view height at its depth).
+  const Camera& cam = doc_.scene.camera;
+  float depth = glm::dot(c0 - cam.position, glm::normalize(cam.target - cam.position));
+  float len = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
+  ImVec2 a = screen(c0), b = screen(c0 + glm::vec3(len, 0, 0));
+  ImVec2 mid((a.x + b.x) / 2, (a.y + b.y) / 2);
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = mid;
+  frame();
+  EXPECT_EQ(state_.gizmo_hover, 0);
+  io.MouseDown[0] = true;
+  frame();
+  for (int i = 1; i <= 5; ++i) {  // drag along the handle's screen direction, one full length
+    io.MousePos = ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5);
+    frame();
+    EXPECT_TRUE(state_.interacting);
+  }
+  io.MouseDown[0] = false;
+  frame();
+  const glm::vec3 c1 = doc_.scene.spheres[ball].center;
+  EXPECT_NEAR(c1.x - c0.x, len, len * 0.05f);
+  EXPECT_FLOAT_EQ(c1.y, c0.y);
+  EXPECT_FLOAT_EQ(c1.z, c0.z);
+  press(GLFW_KEY_Z, /*ctrl=*/true);  // the whole drag is one step
+  EXPECT_EQ(doc_.scene.spheres[ball].center, c0);
+  press(GLFW_KEY_Z, true, /*shift=*/true);
+  EXPECT_EQ(doc_.scene.spheres[ball].center, c1);
+}
+
+TEST_F(UiTest, DeleteKeyAndUndoRedo) {
+  const size_t n = doc_.scene.spheres.size();
+  doc_.selection = {SelectionKind::sphere, 0};
+  press(GLFW_KEY_DELETE);
+  EXPECT_EQ(doc_.scene.spheres.size(), n - 1);
+  press(GLFW_KEY_Z, true);
+  EXPECT_EQ(doc_.scene.spheres.size(), n);
+  press(GLFW_KEY_Z, true, true);
+  EXPECT_EQ(doc_.scene.spheres.size(), n - 1);
+  EXPECT_TRUE(doc_.dirty());
+}
+
+TEST_F(UiTest, AddSphereGlossyMaterialWithColourTexture) {
+  doc_.selection = {SelectionKind::sphere, add_sphere(doc_.scene)};
+  frame();
+  int m = add_material(doc_.scene, MaterialType::glossy);
+  doc_.scene.spheres[doc_.selection.index].material = doc_.scene.materials[m].name;
+  frame();
+  // The texture slot's "File..." with the typed-path fallback: a prompt, then the file applies.
+  state_.native_dialogs = false;
+  state_.slot_material = m;
+  state_.slot_index = 0;
+  choose_file(doc_, state_, FilePurpose::texture_slot);
+  frame();
+  frame();
+  EXPECT_TRUE(path_prompt_open_);
+  apply_chosen_file(doc_, state_, FilePurpose::texture_slot, (kProjects / "assets/leather_color.png").string());
+  press(GLFW_KEY_ESCAPE);  // closes the prompt
+  EXPECT_FALSE(path_prompt_open_);
+  const Material& mat = doc_.scene.materials[m];
+  int t = find_texture(doc_.scene, mat.color_texture);
+  ASSERT_GE(t, 0) << "no colour texture assigned: " << state_.error;
+  EXPECT_EQ(test::problems(doc_.scene, true), "");
+  EXPECT_NE(state_.thumbnails.get(resolve_asset_path(doc_.scene, doc_.scene.textures[t].path)), 0u);
+  frame();
+  EXPECT_EQ(state_.stats.scene_problem, "");
+  EXPECT_GT(viewport_->renderer().sample_count(), 0);
+}
+
+TEST_F(UiTest, SaveAsThroughThePromptThenCtrlSThenReopen) {
+  test::TempDir dir;
+  state_.native_dialogs = false;
+  doc_.scene.spheres[0].radius = 0.77f;
+  frame();
+  EXPECT_TRUE(doc_.dirty());
+  // Save As (never Ctrl+S here: that would overwrite the example project).
+  save_document(doc_, state_, /*save_as=*/true);
+  frame();
+  frame();
+  EXPECT_TRUE(path_prompt_open_);
+  apply_chosen_file(doc_, state_, FilePurpose::save_project_as, (dir / "copy").string());
+  press(GLFW_KEY_ESCAPE);
+  EXPECT_EQ(doc_.path(), dir / "copy.glint");
+  EXPECT_FALSE(doc_.dirty());
+  EXPECT_EQ(doc_.window_title().find('*'), std::string::npos);
+  // Now Ctrl+S writes the copy.
+  doc_.scene.spheres[1].radius = 0.33f;
+  frame();
+  EXPECT_NE(doc_.window_title().find('*'), std::string::npos);
+  press(GLFW_KEY_S, /*ctrl=*/true);
+  EXPECT_FALSE(doc_.dirty());
+  Scene saved = doc_.scene;
+  Document other;
+  ASSERT_TRUE(open_document(other, state_, dir / "copy.glint"));
+  EXPECT_FLOAT_EQ(other.scene.spheres[0].radius, 0.77f);
+  EXPECT_FLOAT_EQ(other.scene.spheres[1].radius, 0.33f);
+  EXPECT_EQ(other.scene.spheres, saved.spheres);
+  EXPECT_EQ(test::problems(other.scene, true), "");  // asset paths rebased to the new folder
+  EXPECT_EQ(state_.recent_files.size(), 0u);  // no recent-file hook set in this test
+}
+
+TEST_F(UiTest, UnsavedChangesPromptGuardsTheNumberKeys) {
+  doc_.scene.spheres[0].radius *= 2;
+  frame();
+  ASSERT_TRUE(doc_.dirty());
+  const Scene edited = doc_.scene;
+  press(GLFW_KEY_2);
+  EXPECT_TRUE(unsaved_prompt_open_);
+  EXPECT_EQ(doc_.scene, edited);  // nothing replaced yet
+  press(GLFW_KEY_ESCAPE);          // Cancel
+  EXPECT_FALSE(unsaved_prompt_open_);
+  EXPECT_EQ(doc_.scene, edited);
+  // Clean document: the key switches at once.
+  doc_.undo();
+  frame();
+  ASSERT_FALSE(doc_.dirty());
+  press(GLFW_KEY_2);
+  EXPECT_EQ(doc_.path().filename(), "emissive_mirror_glass.glint");
+  EXPECT_EQ(doc_.window_title().find('*'), std::string::npos);
+}
+
+TEST_F(UiTest, OutlinerAndPropertiesRunForEveryKindOfSelection) {
+  for (SelectionKind k : {SelectionKind::sphere, SelectionKind::quad, SelectionKind::material,
+                          SelectionKind::texture, SelectionKind::environment, SelectionKind::camera}) {
+    doc_.selection = {k, 0};
+    frame();
+    frame();
+  }
+  state_.show_export = true;
+  frame();
+  EXPECT_FALSE(doc_.dirty());  // drawing panels edits nothing
+  EXPECT_EQ(test::problems(doc_.scene), "");
+}
+
+TEST_F(UiTest, ExportFromTheEditorRunsInSlices) {
+  test::TempDir dir;
+  state_.export_settings.width = 24;
+  state_.export_settings.height = 16;
+  state_.export_settings.samples = 12;
+  state_.export_settings.output = dir / "shot.png";
+  state_.export_job = std::make_unique<ExportJob>(doc_.scene, state_.export_settings);
+  int frames = 0;
+  while (state_.export_job->state() == ExportJob::State::running && frames < 500) {
+    frame();
+    ++frames;
+  }
+  EXPECT_EQ(state_.export_job->state(), ExportJob::State::done) << state_.export_job->error();
+  EXPECT_TRUE(fs::exists(dir / "shot.png"));
+}
+
+}  // namespace
+}  // namespace glint
