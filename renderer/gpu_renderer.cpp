@@ -73,6 +73,8 @@ void GpuRenderer::resize(int width, int height) {
     accumulation_fbo_[i] = make_framebuffer(accumulation_[i]);
   }
   display_texture_ = make_texture_2d(GL_RGBA8, width, height);
+  // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
+  glTextureParameteri(display_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   display_fbo_ = make_framebuffer(display_texture_);
 }
 
