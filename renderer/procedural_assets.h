@@ -32,7 +32,7 @@ struct SkyOptions {
   float sun_elevation_deg = 35;    // above the horizon
   float sun_azimuth_deg = 60;      // atan2(d.z, d.x) in degrees
   float sun_diameter_deg = 8;      // angular diameter of the disc
-  float sun_radiance = 80;         // about 100 times the sky: soft shadows, few fireflies without light sampling
+  float sun_radiance = 80;         // ~290x the median sky: soft shadows, few fireflies without light sampling
   glm::vec3 zenith{0.10f, 0.22f, 0.60f};
   glm::vec3 horizon{0.70f, 0.78f, 0.90f};
   glm::vec3 ground{0.07f, 0.065f, 0.06f};
