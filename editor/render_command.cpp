@@ -2,10 +2,14 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +20,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
+#include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
 
 namespace glint {
@@ -24,6 +29,7 @@ namespace {
 const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
     "                    [--width W] [--height H] [--seed S]\n"
+    "                    [--reference REF.exr --log OUT.csv]\n"
     "\n"
     "Renders a project headlessly (EGL; no window or display needed).\n"
     "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
@@ -33,6 +39,19 @@ const char* const kUsage =
     "  --width W          image width (default: the project's film; with only one of\n"
     "  --height H         width or height given, the other keeps the film's aspect)\n"
     "  --seed S           sample sequence (default: the project's render.seed)\n"
+    "  --reference REF    linear .exr or .hdr image of the same size to measure the error\n"
+    "                     against (give it with --log)\n"
+    "  --log OUT.csv      convergence log against --reference: one row at 1, 2, 4, 8, ...\n"
+    "                     samples per pixel and at the final --spp if that is not a power of\n"
+    "                     two (with --time: powers of two only). Columns:\n"
+    "                     spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite\n"
+    "                     seconds: time spent rendering so far; the clock (and --time) is\n"
+    "                       paused while a checkpoint reads the image back and computes errors\n"
+    "                     gpu_seconds: sum of GL timer queries around the trace passes\n"
+    "                     relmse: mean of (x-r)^2/(r^2+0.01) over pixels and channels;\n"
+    "                       relmse_trimmed drops the worst 0.1% of pixels first\n"
+    "                     mape: mean of |x-r|/(|r|+0.01); mean_bias: relative error of the\n"
+    "                       mean luminance; nonfinite: non-finite samples discarded\n"
     "Exit codes: 0 done, 1 bad project or failed render, 2 bad arguments.\n";
 
 struct Options {
@@ -41,6 +60,8 @@ struct Options {
   std::optional<long> spp;
   std::optional<double> seconds;
   std::optional<long> width, height, seed;
+  std::string reference;  // with `log`: write a convergence log against this image
+  std::string log;
 };
 
 struct UsageError {
@@ -77,6 +98,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
     else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
+    else if (a == "--reference") o.reference = value();
+    else if (a == "--log") o.log = value();
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
     else if (o.project.empty()) o.project = a;
     else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
@@ -84,6 +107,10 @@ Options parse(int argc, char** argv) {
   if (o.project.empty()) throw UsageError{"no project file given"};
   if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
   if (o.spp && o.seconds) throw UsageError{"give --spp or --time, not both"};
+  if (!o.log.empty() && o.reference.empty())
+    throw UsageError{"--log needs --reference REF.exr (the image the error is measured against)"};
+  if (!o.reference.empty() && o.log.empty())
+    throw UsageError{"--reference needs --log OUT.csv (where the convergence log is written)"};
   auto ext = std::filesystem::path(o.output).extension().string();
   if (ext != ".png" && ext != ".hdr" && ext != ".exr")
     throw UsageError{"output '" + o.output + "' must end in .png, .hdr or .exr"};
@@ -93,6 +120,48 @@ Options parse(int argc, char** argv) {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// Render time that can be paused, so that the convergence log's own read-backs and error
+// computations do not count as rendering (and do not eat into --time).
+class RenderClock {
+ public:
+  double seconds() const { return banked_ + (running_ ? seconds_since(start_) : 0.0); }
+  void pause() {
+    banked_ = seconds();
+    running_ = false;
+  }
+  void resume() {
+    start_ = std::chrono::steady_clock::now();
+    running_ = true;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double banked_ = 0;
+  bool running_ = true;
+};
+
+// The reference of --reference: a linear image of exactly the render's size.
+Image load_reference(const std::string& path, int width, int height) {
+  ImageInfo info = probe_image(path);  // throws ImageError naming the file
+  if (!info.high_dynamic_range)
+    throw std::runtime_error(path + ": a reference must be linear radiance (.exr or .hdr), "
+                             "not an 8-bit display image");
+  if (info.width != width || info.height != height)
+    throw std::runtime_error(path + ": the reference is " + std::to_string(info.width) + "x" +
+                             std::to_string(info.height) + " but the render is " +
+                             std::to_string(width) + "x" + std::to_string(height));
+  return load_image(path, ColorEncoding::linear);
+}
+
+// Checkpoints of the log: 1, 2, 4, ... and, with a sample target, the target itself.
+int64_t next_checkpoint(int64_t samples, int64_t target) {
+  int64_t p = 1;
+  while (p <= samples) p *= 2;
+  return target > 0 ? std::min(p, target) : p;
+}
+
+using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
 }  // namespace
 
@@ -131,6 +200,15 @@ int run_render_command(int argc, char** argv) {
     }
     if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
 
+    std::optional<Image> reference;
+    File log(nullptr, &std::fclose);
+    if (!o.log.empty()) {
+      reference = load_reference(o.reference, width, height);
+      log.reset(std::fopen(o.log.c_str(), "w"));
+      if (!log) throw std::runtime_error(o.log + ": cannot write the log: " + std::strerror(errno));
+      std::fputs("spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite\n", log.get());
+    }
+
     auto context = HeadlessGLContext::create();
     std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
                  gl_renderer_name().c_str(), context->platform().c_str());
@@ -139,21 +217,40 @@ int run_render_command(int argc, char** argv) {
 
     const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);
     const bool interactive = isatty(STDERR_FILENO);
-    auto start = std::chrono::steady_clock::now();
+    RenderClock clock;
+    int64_t checkpoint = next_checkpoint(0, target);
+    ImageMetrics last_metrics;
     double last_report = -1e9;
     int batch = 1;
     for (;;) {
-      double elapsed = seconds_since(start);
+      double elapsed = clock.seconds();
       if (o.seconds ? elapsed >= *o.seconds && renderer.sample_count() > 0
                     : renderer.sample_count() >= target)
         break;
-      int k = o.seconds ? batch : static_cast<int>(std::min<int64_t>(batch, target - renderer.sample_count()));
+      // Samples this pass: the batch, capped at the target and (when logging) at the next
+      // checkpoint, so that every checkpoint is hit exactly.
+      int64_t limit = o.seconds ? std::numeric_limits<int64_t>::max() : target - renderer.sample_count();
+      if (log) limit = std::min(limit, checkpoint - renderer.sample_count());
+      int k = static_cast<int>(std::min<int64_t>(batch, limit));
       auto pass_start = std::chrono::steady_clock::now();
       renderer.trace(k);
       glFinish();
-      // Grow the batch while a pass is short: fewer passes, same samples.
-      if (seconds_since(pass_start) < 0.25 && batch < 1024) batch *= 2;
-      elapsed = seconds_since(start);
+      // Grow the batch while a full pass is short: fewer passes, same samples.
+      if (k == batch && seconds_since(pass_start) < 0.25 && batch < 1024) batch *= 2;
+      elapsed = clock.seconds();
+      if (log && renderer.sample_count() == checkpoint) {
+        clock.pause();  // the read-back and the metrics are not rendering
+        double gpu = renderer.trace_gpu_seconds();
+        Image accumulation = renderer.read_accumulation();
+        last_metrics = compare_images(accumulation, *reference);
+        std::fprintf(log.get(), "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.0f\n",
+                     static_cast<long long>(checkpoint), elapsed, gpu, last_metrics.relmse,
+                     last_metrics.relmse_trimmed, last_metrics.mape, last_metrics.mean_bias,
+                     nonfinite_count(accumulation));
+        std::fflush(log.get());  // a long render can be watched, and an interrupted one keeps its rows
+        checkpoint = next_checkpoint(checkpoint, target);
+        clock.resume();
+      }
       if (interactive || elapsed - last_report >= 5.0) {
         std::string line = o.seconds
                                ? format_time_progress(elapsed, *o.seconds, renderer.sample_count())
@@ -162,7 +259,7 @@ int run_render_command(int argc, char** argv) {
         last_report = elapsed;
       }
     }
-    double total = seconds_since(start);
+    double total = clock.seconds();
     if (interactive) std::fputc('\n', stderr);
 
     Image image;
@@ -177,6 +274,13 @@ int run_render_command(int argc, char** argv) {
     std::fprintf(stderr, "glint: wrote %s (%dx%d, %lld spp, %.2f s, %.1f spp/s, %.2f Msamples/s)\n",
                  o.output.c_str(), width, height, static_cast<long long>(renderer.sample_count()), total,
                  renderer.sample_count() / total, pixel_samples / total * 1e-6);
+    if (log) {
+      if (std::fclose(log.release()) != 0)
+        throw std::runtime_error(o.log + ": cannot write the log: " + std::strerror(errno));
+      std::fprintf(stderr, "glint: wrote %s (last row: relMSE %.4g, trimmed %.4g, bias %+.4g)\n",
+                   o.log.c_str(), last_metrics.relmse, last_metrics.relmse_trimmed,
+                   last_metrics.mean_bias);
+    }
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint render: %s\n", e.what());

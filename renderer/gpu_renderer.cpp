@@ -53,6 +53,7 @@ GpuRenderer::~GpuRenderer() {
   resize(0, 0);
   glDeleteBuffers(4, buffers_);
   glDeleteVertexArrays(1, &vao_);
+  if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   if (texture_array_) glDeleteTextures(1, &texture_array_);
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
 }
@@ -106,6 +107,9 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   if (result.accumulation_reset) {
     samples_ = 0;
     display_stale_ = true;
+    if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
+    trace_timers_.clear();
+    trace_gpu_seconds_ = 0;
     const float zero[4] = {0, 0, 0, 0};
     for (GLuint t : accumulation_)
       if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
@@ -207,11 +211,41 @@ void GpuRenderer::trace(int samples) {
   glBindTextureUnit(1, texture_array_);
   glBindTextureUnit(2, environment_texture_);
   glBindVertexArray(vao_);
+  collect_trace_timers(false);  // finished ones only, so the editor's list stays short
+  // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
+  // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
+  GLuint timer[2] = {0, 0};
+  glCreateQueries(GL_TIMESTAMP, 2, timer);
+  glQueryCounter(timer[0], GL_TIMESTAMP);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glQueryCounter(timer[1], GL_TIMESTAMP);
+  trace_timers_.insert(trace_timers_.end(), timer, timer + 2);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   current_ = next;
   samples_ += samples;
   display_stale_ = true;
+}
+
+// Adds the passes whose timestamps are in (all of them when `wait`) to trace_gpu_seconds_.
+// Queries finish in submission order, so the first unfinished pass ends the scan.
+void GpuRenderer::collect_trace_timers(bool wait) {
+  size_t done = 0;
+  for (; done + 1 < trace_timers_.size(); done += 2) {
+    GLint available = 0;
+    if (!wait) glGetQueryObjectiv(trace_timers_[done + 1], GL_QUERY_RESULT_AVAILABLE, &available);
+    if (!wait && !available) break;
+    GLuint64 begin = 0, end = 0;
+    glGetQueryObjectui64v(trace_timers_[done], GL_QUERY_RESULT, &begin);
+    glGetQueryObjectui64v(trace_timers_[done + 1], GL_QUERY_RESULT, &end);
+    trace_gpu_seconds_ += end > begin ? static_cast<double>(end - begin) * 1e-9 : 0.0;
+  }
+  if (done > 0) glDeleteQueries(static_cast<GLsizei>(done), trace_timers_.data());
+  trace_timers_.erase(trace_timers_.begin(), trace_timers_.begin() + static_cast<std::ptrdiff_t>(done));
+}
+
+double GpuRenderer::trace_gpu_seconds() {
+  collect_trace_timers(true);
+  return trace_gpu_seconds_;
 }
 
 void GpuRenderer::update_display() {

@@ -44,6 +44,9 @@ class GpuRenderer {
   void update_display();
 
   int64_t sample_count() const { return samples_; }
+  // GPU time of the trace passes since the accumulation was last reset, from GL_TIMESTAMP
+  // queries around each pass. Waits for passes still in flight; trace() itself never waits.
+  double trace_gpu_seconds();
   int width() const { return width_; }
   int height() const { return height_; }
   GLuint display_texture() const { return display_texture_; }
@@ -59,6 +62,7 @@ class GpuRenderer {
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
+  void collect_trace_timers(bool wait);
 
   std::unique_ptr<GlProgram> trace_program_;
   std::unique_ptr<GlProgram> tonemap_program_;
@@ -79,6 +83,8 @@ class GpuRenderer {
   bool first_sync_ = true;
   SceneDigests digests_;
   std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
+  std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
+  double trace_gpu_seconds_ = 0;
 };
 
 }  // namespace glint

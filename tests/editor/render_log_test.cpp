@@ -1,0 +1,180 @@
+// `glint render --reference REF --log OUT.csv` (issue 4): the convergence log of a noisy scene
+// against an independent reference, a white furnace against its exact image, and the errors.
+// Runs the command in-process; it makes its own headless EGL context.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "editor_test_util.h"
+#include "editor/render_command.h"
+#include "renderer/image.h"
+#include "renderer/project_file.h"
+
+namespace glint {
+namespace {
+namespace fs = std::filesystem;
+
+const char* const kHeader = "spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite";
+
+// `glint render ARGS...`: the arguments after "render", as main passes them.
+int render(std::vector<std::string> args) {
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  return run_render_command(static_cast<int>(argv.size()), argv.data());
+}
+
+struct Row {
+  long long spp = 0;
+  double seconds, gpu_seconds, relmse, relmse_trimmed, mape, mean_bias, nonfinite;
+};
+
+// Reads the log, checking the header and that every row has exactly eight numbers.
+std::vector<Row> read_log(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  EXPECT_TRUE(std::getline(in, line)) << file << " is empty";
+  EXPECT_EQ(line, kHeader);
+  std::vector<Row> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::stringstream ss(line);
+    for (std::string field; std::getline(ss, field, ',');) v.push_back(std::stod(field));
+    EXPECT_EQ(v.size(), 8u) << line;
+    if (v.size() != 8) continue;
+    rows.push_back({static_cast<long long>(v[0]), v[1], v[2], v[3], v[4], v[5], v[6], v[7]});
+  }
+  return rows;
+}
+
+std::vector<long long> spp_column(const std::vector<Row>& rows) {
+  std::vector<long long> s;
+  for (const Row& r : rows) s.push_back(r.spp);
+  return s;
+}
+
+// A white Lambertian sphere under a constant environment L: every pixel is exactly L (see the
+// white furnace in tests/gl/renderer_test.cpp), so its reference is a constant image.
+Scene furnace_scene() {
+  Scene s;
+  s.camera.position = {0, 0, 5};
+  s.camera.target = {0, 0, 0};
+  s.film = {32, 32};
+  s.environment.color = {0.25f, 0.5f, 1.0f};
+  s.materials.push_back({.name = "white", .color = {1, 1, 1}});
+  s.spheres.push_back({.name = "ball", .center = {0, 0, 0}, .radius = 1.5f, .material = "white"});
+  return s;
+}
+
+Image constant_image(int w, int h, float r, float g, float b) {
+  Image img;
+  img.width = w;
+  img.height = h;
+  for (int i = 0; i < w * h; ++i) img.pixels.insert(img.pixels.end(), {r, g, b, 1.0f});
+  return img;
+}
+
+// The Cornell box at 32x32 against a 256-spp reference of another seed (independent noise), to
+// 48 spp: checkpoints at the powers of two and at 48. The expected relMSE falls like
+// var/N + var/256, from ~1.004 var at 1 spp to ~0.025 var at 48; "last < first / 2" leaves a
+// wide margin for the heavy tail of a BSDF-sampled small light.
+TEST(RenderLog, NoisySceneConvergesTowardsAnIndependentReference) {
+  test::TempDir dir;
+  const std::string project = (fs::path(GLINT_SOURCE_DIR) / "projects/cornell_box.glint").string();
+  ASSERT_EQ(render({project, "-o", (dir / "ref.exr").string(), "--width", "32", "--spp", "256",
+                    "--seed", "1000"}), 0);
+  ASSERT_EQ(render({project, "-o", (dir / "out.exr").string(), "--width", "32", "--spp", "48",
+                    "--seed", "1", "--reference", (dir / "ref.exr").string(), "--log",
+                    (dir / "log.csv").string()}), 0);
+  std::vector<Row> rows = read_log(dir / "log.csv");
+  ASSERT_EQ(spp_column(rows), (std::vector<long long>{1, 2, 4, 8, 16, 32, 48}));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const Row& r = rows[i];
+    for (double v : {r.seconds, r.gpu_seconds, r.relmse, r.relmse_trimmed, r.mape, r.mean_bias})
+      EXPECT_TRUE(std::isfinite(v)) << "row " << i;
+    EXPECT_GT(r.seconds, 0);
+    EXPECT_GT(r.gpu_seconds, 0);
+    EXPECT_LE(r.relmse_trimmed, r.relmse);
+    EXPECT_EQ(r.nonfinite, 0);
+    if (i > 0) {
+      EXPECT_GT(r.seconds, rows[i - 1].seconds);
+      EXPECT_GT(r.gpu_seconds, rows[i - 1].gpu_seconds);
+    }
+  }
+  EXPECT_LT(rows.back().relmse, rows.front().relmse / 2);
+  EXPECT_LT(rows.back().relmse_trimmed, rows.front().relmse_trimmed / 2);
+  EXPECT_LT(rows.back().mape, rows.front().mape);
+}
+
+// Zero-variance scene against its exact image: every row's error is float rounding only
+// (per-pixel error below 1e-5 relative, as in the GL white furnace test).
+TEST(RenderLog, WhiteFurnaceMatchesItsExactImageAtEveryCheckpoint) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  save_image(dir / "exact.exr", constant_image(32, 32, 0.25f, 0.5f, 1.0f));
+  ASSERT_EQ(render({(dir / "furnace.glint").string(), "-o", (dir / "out.hdr").string(), "--spp", "8",
+                    "--reference", (dir / "exact.exr").string(), "--log", (dir / "log.csv").string()}), 0);
+  std::vector<Row> rows = read_log(dir / "log.csv");
+  ASSERT_EQ(spp_column(rows), (std::vector<long long>{1, 2, 4, 8}));
+  for (const Row& r : rows) {
+    EXPECT_LT(r.relmse, 1e-9);
+    EXPECT_LT(r.relmse_trimmed, 1e-9);
+    EXPECT_LT(r.mape, 1e-5);
+    EXPECT_LT(std::abs(r.mean_bias), 1e-5);
+    EXPECT_EQ(r.nonfinite, 0);
+  }
+}
+
+TEST(RenderLog, TimeLimitedRenderLogsPowersOfTwo) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  save_image(dir / "exact.exr", constant_image(32, 32, 0.25f, 0.5f, 1.0f));
+  ASSERT_EQ(render({(dir / "furnace.glint").string(), "-o", (dir / "out.exr").string(), "--time", "0.5",
+                    "--reference", (dir / "exact.exr").string(), "--log", (dir / "log.csv").string()}), 0);
+  std::vector<Row> rows = read_log(dir / "log.csv");
+  ASSERT_FALSE(rows.empty());
+  for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].spp, 1LL << i);
+}
+
+TEST(RenderLog, ReferenceAndLogGoTogether) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  const std::string project = (dir / "furnace.glint").string(), out = (dir / "out.exr").string();
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({project, "-o", out, "--log", (dir / "log.csv").string()}), 2);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("--log needs --reference"), std::string::npos);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({project, "-o", out, "--reference", (dir / "ref.exr").string()}), 2);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("--reference needs --log"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "log.csv"));
+}
+
+TEST(RenderLog, BadReferenceFailsBeforeRenderingAndNamesTheFile) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  const std::string project = (dir / "furnace.glint").string(), out = (dir / "out.exr").string();
+  const std::string log = (dir / "log.csv").string();
+  save_image(dir / "small.exr", constant_image(16, 32, 1, 1, 1));
+  save_image(dir / "display.png", constant_image(32, 32, 1, 1, 1));
+  struct Case {
+    std::string reference, message;
+  } cases[] = {
+      {(dir / "small.exr").string(), "is 16x32 but the render is 32x32"},
+      {(dir / "missing.exr").string(), "missing.exr"},
+      {(dir / "display.png").string(), "must be linear radiance"},
+  };
+  for (const Case& c : cases) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(render({project, "-o", out, "--reference", c.reference, "--log", log}), 1) << c.reference;
+    std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find(c.reference), std::string::npos) << err;
+    EXPECT_NE(err.find(c.message), std::string::npos) << err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace glint
