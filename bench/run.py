@@ -1,0 +1,561 @@
+#!/usr/bin/env python3
+"""Glint's speed-against-error benchmark (issue 4, parts 2 and 3). Run it through bench/run.sh.
+
+For each bench scene (bench/scenes/*.glint, written by make_scenes.py):
+  1. a reference: Glint itself at --ref-spp samples per pixel with a seed no test render uses;
+  2. renders at 1, 2, 4, ... --max-spp samples per pixel with --seeds seeds; each is its own
+     `glint render` (its trace time is the one the CLI reports, excluding start-up and shader
+     compilation), and relMSE (epsilon 0.01, as renderer/image_metrics.h), trimmed relMSE, MAPE,
+     mean bias and HDR-FLIP against the reference are computed here; when the CLI has
+     `--reference/--log`, one logged render per seed at --max-spp is added and its CSV is
+     checked against these numbers;
+  3. for the scenes the exporter accepts, Mitsuba 3 (path integrator, same resolution, CPU):
+     a converged image (--mitsuba-ref-spp) for the bias of Glint's reference against it, and
+     its own 1, 2, 4, ... --mitsuba-max-spp ladder for the equal-time error ratio;
+  4. bench/RESULTS.md with log-log plots, fitted slopes, the time to reach relMSE 1e-1, 1e-2
+     and 1e-3, samples per second, and the Mitsuba comparison.
+"""
+import argparse
+import csv
+import datetime
+import glob
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+
+import numpy as np  # noqa: E402
+
+import make_scenes  # noqa: E402
+import metrics  # noqa: E402
+import mitsuba_export as mx  # noqa: E402
+
+SCENES = ["cornell", "roughness_ladder", "thin_glass", "small_emitter", "env_dof",
+          "huge_sphere_floor", "white_furnace", "showcase"]
+TARGETS = [1e-1, 1e-2, 1e-3]
+REF_SEED = 1000001
+MITSUBA_REF_SEED = 2000001
+
+FULL = dict(width=128, max_spp=512, ref_spp=16384, seeds=3, mitsuba_ref_spp=4096,
+            mitsuba_max_spp=256)
+QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=64, mitsuba_max_spp=8)
+
+
+def log(msg):
+    print(msg, flush=True)
+
+
+# --------------------------------------------------------------------------------------------
+# Glint
+
+WROTE = re.compile(r"wrote .* \((\d+)x(\d+), (\d+) spp, ([0-9.]+) s, ([0-9.]+) spp/s")
+
+
+def glint_render(glint, project, out, spp, seed, width, extra=()):
+    cmd = [glint, "render", project, "-o", out, "--spp", str(spp), "--seed", str(seed),
+           "--width", str(width)] + list(extra)
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr}")
+    m = WROTE.search(r.stderr)
+    if not m:
+        raise RuntimeError(f"cannot parse the render time from:\n{r.stderr}")
+    gl = re.search(r"glint: OpenGL (.*)", r.stderr)
+    return {"width": int(m.group(1)), "height": int(m.group(2)), "spp": int(m.group(3)),
+            # The CLI prints seconds to 10 ms; spp / (spp/s, printed to 0.1) is finer for short renders.
+            "seconds": int(m.group(3)) / float(m.group(5)) if float(m.group(5)) > 0 else float(m.group(4)),
+            "gl": gl.group(1) if gl else "?"}
+
+
+def cli_has_log(glint):
+    r = subprocess.run([glint, "render", "--help"], capture_output=True, text=True)
+    return "--log" in r.stdout and "--reference" in r.stdout
+
+
+# --------------------------------------------------------------------------------------------
+# Fits
+
+def loglog_fit(x, y):
+    """log y = a + b log x, least squares over finite positive points; returns (a, b) or None."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
+    if ok.sum() < 2:
+        return None
+    b, a = np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)
+    return float(a), float(b)
+
+
+def fit_eval(fit, x):
+    return math.exp(fit[0] + fit[1] * math.log(x))
+
+
+def time_to(fit, target, t_min, t_max, e_first, e_last):
+    """Seconds to reach `target` on the fit, inside the measured range; else a phrase."""
+    if fit is None:
+        return "n/a"
+    if e_first <= target:
+        return f"<= {fmt_s(t_min)}"
+    if fit[1] >= 0 or e_last > target:
+        # Not measured down to the target: say where the fit would put it, not a number.
+        if fit[1] < 0:
+            t = math.exp((math.log(target) - fit[0]) / fit[1])
+            return f"not reached (fit: {fmt_s(t)})"
+        return "not reached"
+    return fmt_s(math.exp((math.log(target) - fit[0]) / fit[1]))
+
+
+def fmt_s(t):
+    if t < 1:
+        return f"{t * 1000:.0f} ms" if t >= 0.01 else f"{t * 1000:.1f} ms"
+    if t < 120:
+        return f"{t:.1f} s"
+    if t < 7200:
+        return f"{t / 60:.1f} min"
+    return f"{t / 3600:.1f} h"
+
+
+def g3(x):
+    return "n/a" if x is None or not np.isfinite(x) else f"{x:.3g}"
+
+
+# --------------------------------------------------------------------------------------------
+# One scene
+
+def ladder(max_spp):
+    out, s = [], 1
+    while s <= max_spp:
+        out.append(s)
+        s *= 2
+    return out
+
+
+def bench_glint(name, project, glint, work, cfg, has_log):
+    os.makedirs(work, exist_ok=True)
+    ref_path = os.path.join(work, "reference.exr")
+    meta_path = os.path.join(work, "reference.json")
+    key = {"project": open(project).read(), "spp": cfg["ref_spp"], "width": cfg["width"],
+           "glint_mtime": os.path.getmtime(glint)}
+    if os.path.exists(ref_path) and os.path.exists(meta_path) and json.load(open(meta_path))["key"] == key:
+        info = json.load(open(meta_path))["info"]
+        log(f"  reference: reused {ref_path}")
+    else:
+        info = glint_render(glint, project, ref_path, cfg["ref_spp"], REF_SEED, cfg["width"])
+        json.dump({"key": key, "info": info}, open(meta_path, "w"))
+        log(f"  reference: {cfg['ref_spp']} spp in {fmt_s(info['seconds'])}")
+    ref = metrics.read_exr(ref_path)
+    rows = []
+    for seed in range(1, cfg["seeds"] + 1):
+        for spp in ladder(cfg["max_spp"]):
+            out = os.path.join(work, f"s{seed}_{spp}.exr")
+            r = glint_render(glint, project, out, spp, seed, cfg["width"])
+            img = metrics.read_exr(out)
+            rows.append({"seed": seed, "spp": spp, "seconds": r["seconds"],
+                         "relmse": metrics.relmse(img, ref),
+                         "relmse_trimmed": metrics.relmse_trimmed(img, ref),
+                         "mape": metrics.mape(img, ref), "mean_bias": metrics.mean_bias(img, ref),
+                         "flip": metrics.flip(img, ref), "mean_lum": metrics.mean_lum(img),
+                         "nonfinite": int(np.sum(~np.isfinite(img)))})
+            if spp != cfg["max_spp"]:
+                os.remove(out)
+        last = rows[-1]
+        log(f"  seed {seed}: {cfg['max_spp']} spp in {fmt_s(last['seconds'])}, relMSE "
+            f"{last['relmse']:.3g}, FLIP {last['flip']:.3g}")
+    logcheck = None
+    if has_log:
+        logcheck = []
+        for seed in range(1, cfg["seeds"] + 1):
+            csv_path = os.path.join(work, f"log_s{seed}.csv")
+            glint_render(glint, project, os.path.join(work, f"log_s{seed}.exr"), cfg["max_spp"],
+                         seed, cfg["width"], ["--reference", ref_path, "--log", csv_path])
+            with open(csv_path) as f:
+                logcheck.append(list(csv.DictReader(f)))
+    return {"info": info, "ref": ref, "rows": rows, "log": logcheck}
+
+
+def summarize(rows, key="relmse"):
+    spps = sorted({r["spp"] for r in rows})
+    mean = lambda k, s: float(np.mean([r[k] for r in rows if r["spp"] == s]))
+    return {"spp": spps, "seconds": [mean("seconds", s) for s in spps],
+            key: [mean(key, s) for s in spps],
+            "flip": [mean("flip", s) for s in spps] if "flip" in rows[0] else None,
+            "lum_std": [float(np.std([r["mean_lum"] for r in rows if r["spp"] == s], ddof=1))
+                        if len([r for r in rows if r["spp"] == s]) > 1 else float("nan") for s in spps]}
+
+
+def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary):
+    doc = mx.load_project(project)
+    reasons = mx.unsupported_reasons(doc)
+    if reasons:
+        return {"exported": False, "reasons": reasons}
+    os.makedirs(work, exist_ok=True)
+    ref_g = glint_result["ref"]
+    h, w = ref_g.shape[:2]
+    d, notes = mx.export(doc, w, h, 1, 0, mesh_dir=work)
+    mi = mx._mitsuba()
+    scene = mi.load_dict(d)
+    mx.render(scene, 1, 0)  # JIT warm-up (kernel compilation is not counted below)
+    ref_m, t_ref = mx.render(scene, cfg["mitsuba_ref_spp"], MITSUBA_REF_SEED)
+    mx.write_exr(os.path.join(work, "mitsuba_reference.exr"), ref_m)
+    log(f"  mitsuba reference: {cfg['mitsuba_ref_spp']} spp in {fmt_s(t_ref)}")
+    rows = []
+    for seed in range(1, cfg["seeds"] + 1):
+        for spp in ladder(cfg["mitsuba_max_spp"]):
+            img, secs = mx.render(scene, spp, seed)
+            rows.append({"seed": seed, "spp": spp, "seconds": secs,
+                         "relmse": metrics.relmse(img, ref_m), "mean_lum": metrics.mean_lum(img),
+                         "relmse_vs_glint_ref": metrics.relmse(img, ref_g)})
+    ms = summarize(rows)
+    fit_mt = loglog_fit(ms["seconds"], ms["relmse"])
+    fit_ms = loglog_fit(ms["spp"], ms["relmse"])
+    fit_gt = loglog_fit(glint_summary["seconds"], glint_summary["relmse"])
+    fit_gs = loglog_fit(glint_summary["spp"], glint_summary["relmse"])
+    # Equal time: both fits evaluated at the longest time both ladders measured.
+    t_star = min(ms["seconds"][-1], glint_summary["seconds"][-1])
+    ratio = fit_eval(fit_gt, t_star) / fit_eval(fit_mt, t_star) if fit_gt and fit_mt else float("nan")
+    # Bias of Glint's converged image against Mitsuba's, and what noise alone would give.
+    bias = metrics.mean_bias(ref_g, ref_m)
+    rel_conv = metrics.relmse(ref_g, ref_m)
+    noise = (fit_eval(fit_gs, cfg["ref_spp"]) if fit_gs else float("nan")) + \
+            (fit_eval(fit_ms, cfg["mitsuba_ref_spp"]) if fit_ms else float("nan"))
+    # Standard error of the mean-luminance difference, from the seed spread at the top of each
+    # ladder scaled to the reference sample counts.
+    m_lum = metrics.mean_lum(ref_m)
+    sg = glint_summary["lum_std"][-1] * math.sqrt(glint_summary["spp"][-1] / cfg["ref_spp"])
+    sm = ms["lum_std"][-1] * math.sqrt(ms["spp"][-1] / cfg["mitsuba_ref_spp"])
+    sigma = math.sqrt(sg ** 2 + sm ** 2) / m_lum if m_lum > 0 else float("nan")
+    log(f"  mitsuba: bias {bias:+.3%} (sigma {sigma:.2%}), relMSE(glint ref, mitsuba ref) "
+        f"{rel_conv:.3g} (noise alone ~{noise:.3g}), equal-time ratio {ratio:.3g} at {fmt_s(t_star)}")
+    return {"exported": True, "notes": notes, "rows": rows, "summary": ms, "t_ref": t_ref,
+            "bias": bias, "sigma": sigma, "relmse_conv": rel_conv, "noise": noise,
+            "ratio": ratio, "t_star": t_star, "fit_time": fit_mt, "fit_spp": fit_ms,
+            "pixels": w * h, "mean_lum_mitsuba": m_lum, "mean_lum_glint": metrics.mean_lum(ref_g)}
+
+
+# --------------------------------------------------------------------------------------------
+# Report
+
+def plots(results, out_dir, prefix):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    files = []
+    cmap = plt.get_cmap("tab10")
+    specs = [("relmse_vs_time", "seconds", "relmse", "render time (s)", "relMSE"),
+             ("relmse_vs_spp", "spp", "relmse", "samples per pixel", "relMSE"),
+             ("flip_vs_spp", "spp", "flip", "samples per pixel", "mean HDR-FLIP")]
+    for fname, xk, yk, xl, yl in specs:
+        fig, ax = plt.subplots(figsize=(8, 5.5))
+        for i, (name, r) in enumerate(results.items()):
+            s = r["summary"]
+            x, y = np.array(s[xk]), np.array(s[yk])
+            for row in r["glint"]["rows"]:
+                ax.scatter(row[xk], row[yk], s=6, color=cmap(i % 10), alpha=0.3, lw=0)
+            fit = loglog_fit(x, y)
+            label = name + (f" (slope {fit[1]:.2f})" if fit else "")
+            ax.plot(x, y, "o", color=cmap(i % 10), ms=4, label=label)
+            if fit:
+                xs = np.geomspace(x.min(), x.max(), 20)
+                ax.plot(xs, np.exp(fit[0] + fit[1] * np.log(xs)), "-", color=cmap(i % 10), lw=1)
+            if yk == "relmse" and r.get("mitsuba", {}).get("exported"):
+                ms = r["mitsuba"]["summary"]
+                ax.plot(ms[xk], ms[yk], "x--", color=cmap(i % 10), ms=5, lw=0.8, alpha=0.8,
+                        label=f"{name}, Mitsuba (own ref.)")
+        if yk == "relmse":
+            for t in TARGETS:
+                ax.axhline(t, color="grey", lw=0.5, ls=":")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xl)
+        ax.set_ylabel(yl)
+        ax.set_title(f"{yl} against {xl.split(' (')[0]}: mean of seeds (dots: single seeds), "
+                     "log-log fit", fontsize=9)
+        ax.grid(True, which="both", lw=0.3, alpha=0.5)
+        ax.legend(fontsize=6.5, ncol=2)
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"{prefix}{fname}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        files.append(os.path.basename(path))
+    return files
+
+
+def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command):
+    L = []
+    L.append("# Glint benchmark: speed against error\n")
+    L.append(f"Generated by `{command}` on {env['date']} ({'QUICK validation run: tiny sizes, not results' if cfg['quick'] else 'full run'}).\n")
+    L.append(f"- machine: {env['cpu']}, {os.cpu_count()} logical CPUs; Glint on OpenGL {env['gl']}")
+    L.append(f"- Mitsuba {env['mitsuba']} variant `{env['variant']}`" +
+             (f" (libLLVM: `{env['llvm']}`)" if env["llvm"] else " (no working libLLVM found)"))
+    L.append(f"- width {cfg['width']} px (each scene keeps its film's aspect), {cfg['seeds']} seeds, "
+             f"1 to {cfg['max_spp']} spp doubling; reference: Glint itself at {cfg['ref_spp']} spp "
+             f"(seed {REF_SEED}, used by no test render); Mitsuba: converged image at "
+             f"{cfg['mitsuba_ref_spp']} spp, ladder 1 to {cfg['mitsuba_max_spp']} spp")
+    L.append("- errors: relMSE = mean over pixels and RGB of (x - r)^2 / (r^2 + 0.01) (as "
+             "renderer/image_metrics.h); FLIP = mean HDR-FLIP (flip-evaluator); times are the "
+             "trace time `glint render` reports (start-up and shader compilation excluded)")
+    L.append("- the reference is Glint's own, so these errors measure noise, not bias (bias is "
+             "the Mitsuba section's job); the reference's own noise adds about relMSE(ladder "
+             f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point\n")
+    L.append("## Convergence and time to error\n")
+    L.append("| scene | size | Msamples/s | spp/s | slope vs spp | slope vs time | relMSE @ max spp | "
+             "trimmed | FLIP @ max spp | t(relMSE 1e-1) | t(1e-2) | t(1e-3) |")
+    L.append("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, r in results.items():
+        s = r["summary"]
+        fs, ft = loglog_fit(s["spp"], s["relmse"]), loglog_fit(s["seconds"], s["relmse"])
+        rows = r["glint"]["rows"]
+        top = [x for x in rows if x["spp"] == s["spp"][-1]]
+        w, h = r["size"]
+        secs = s["seconds"][-1]
+        tt = [time_to(ft, t, s["seconds"][0], s["seconds"][-1], s["relmse"][0], s["relmse"][-1])
+              for t in TARGETS]
+        L.append(f"| {name} | {w}x{h} | {s['spp'][-1] * w * h / secs / 1e6:.3g} | "
+                 f"{s['spp'][-1] / secs:.3g} | {g3(fs[1] if fs else None)} | {g3(ft[1] if ft else None)} | "
+                 f"{s['relmse'][-1]:.3g} | {np.mean([x['relmse_trimmed'] for x in top]):.3g} | "
+                 f"{s['flip'][-1]:.3g} | " + " | ".join(tt) + " |")
+    L.append("\nTimes to error come from the log-log fit of mean relMSE against time, used only "
+             "inside the measured range; \"not reached\" gives the fit's extrapolation in "
+             "brackets. Samples per second are at the largest sample count.\n")
+    for f in plot_files:
+        L.append(f"![{f}]({f})\n")
+    furnace = results.get("white_furnace")
+    if furnace:
+        ref = furnace["glint"]["ref"]
+        L.append(f"White furnace (analytic value 1 everywhere): Glint's reference has mean "
+                 f"{ref.mean():.5f}, min {ref.min():.4f}, max {ref.max():.4f}.\n")
+    if any(r["glint"]["log"] for r in results.values()):
+        L.append("## `glint render --log` cross-check\n")
+        L.append("| scene | seed | CSV relMSE @ max spp | harness relMSE (same seed, spp) | CSV seconds | harness seconds |")
+        L.append("|---|---|---|---|---|---|")
+        for name, r in results.items():
+            for seed, rows in enumerate(r["glint"]["log"] or [], start=1):
+                if not rows:
+                    continue
+                last = rows[-1]
+                mine = [x for x in r["glint"]["rows"] if x["seed"] == seed and x["spp"] == int(last["spp"])]
+                L.append(f"| {name} | {seed} | {float(last['relmse']):.4g} | "
+                         f"{mine[0]['relmse']:.4g} | {float(last['seconds']):.3g} | {mine[0]['seconds']:.3g} |"
+                         if mine else f"| {name} | {seed} | {last['relmse']} | n/a | {last['seconds']} | n/a |")
+        L.append("")
+    L.append("## Independent reference: Mitsuba 3\n")
+    L.append(f"Exported by `bench/mitsuba_export.py`; Mitsuba's `path` integrator (max_depth = "
+             f"max_bounces + 1) on the CPU (`{env['variant']}`), Glint on {env['gl_short']}. "
+             "Bias: mean-luminance difference of Glint's converged image against Mitsuba's "
+             "(± one standard error from the seed spread), and relMSE between the two converged "
+             "images beside what their noise alone would give (from the ladder fits). Equal-time "
+             "ratio: Glint's relMSE over Mitsuba's at the same time (each against its own "
+             "converged image, so the ratio measures noise only), from the two log-log fits at "
+             "t*, the longest time both ladders measured; above 1 means Mitsuba converges faster.\n")
+    L.append("| scene | mean-lum. bias Glint vs Mitsuba | relMSE(Glint ref, Mitsuba ref) | noise alone | "
+             "equal-time relMSE ratio Glint / Mitsuba | t* | Mitsuba Msamples/s | Mitsuba slope vs time |")
+    L.append("|---|---|---|---|---|---|---|---|")
+    refused = []
+    for name, r in results.items():
+        m = r.get("mitsuba")
+        if not m:
+            continue
+        if not m["exported"]:
+            refused.append((name, m["reasons"]))
+            continue
+        ms = m["summary"]
+        L.append(f"| {name} | {m['bias']:+.2%} ± {m['sigma']:.2%} | {m['relmse_conv']:.3g} | "
+                 f"{m['noise']:.3g} | {g3(m['ratio'])} | {fmt_s(m['t_star'])} | "
+                 f"{ms['spp'][-1] * m['pixels'] / ms['seconds'][-1] / 1e6:.3g} | "
+                 f"{g3(m['fit_time'][1] if m['fit_time'] else None)} |")
+    L.append("")
+    if refused:
+        L.append("Not exported (Mitsuba would not model them identically):\n")
+        for name, reasons in refused:
+            L.append(f"- **{name}**: " + "; ".join(reasons[:4]) +
+                     (f"; and {len(reasons) - 4} more" if len(reasons) > 4 else ""))
+        L.append("")
+    notes = [(n, x) for n, r in results.items() if r.get("mitsuba", {}).get("exported")
+             for x in r["mitsuba"]["notes"]]
+    for n, x in notes:
+        L.append(f"- {n}: {x}")
+    if notes:
+        L.append("")
+    if conv:
+        L.append("### Convention check: environment map and camera\n")
+        L.append("An environment-only project (max_bounces 0, `hangar_interior_1k.hdr` rotated by "
+                 "40 degrees, intensity 1.5, 64x48 px, 64 spp) seen from three directions, "
+                 "rendered by Glint (two seeds) and by Mitsuba with the exporter's convention and "
+                 "with wrong ones. relMSE against Glint's seed-1 image; the right convention must "
+                 "sit at the noise floor (Glint against Glint).\n")
+        keys = [k for k in conv[0] if k != "view" and not k.endswith(" bias")]
+        L.append("| view | " + " | ".join(keys) + " |")
+        L.append("|---|" + "---|" * len(keys))
+        for row in conv:
+            L.append(f"| {row['view']} | " + " | ".join(f"{row[k]:.3g}" for k in keys) + " |")
+        L.append("")
+    L.append("### Modelling differences between Glint and the Mitsuba export\n")
+    L.append(DIFFERENCES)
+    with open(os.path.join(out_dir, f"{prefix}RESULTS.md"), "w") as f:
+        f.write("\n".join(L) + "\n")
+
+
+DIFFERENCES = """\
+- **Two-sided emission.** Glint's emission leaves both sides of a surface; Mitsuba's `area`
+  emitter only the front. Emissive quads are exported as two one-sided copies back to back
+  (the copy reversed and moved 1e-5 x (1 + |p|) behind), so both sides emit and reflect as in
+  Glint; Mitsuba's light sampling then also picks the copy facing away (wasted samples, no bias).
+  Emissive spheres emit outwards only, plus an inward-facing inner sphere when the camera or a
+  shape is inside one.
+- **Two-sided shading.** Glint shades both sides of every surface; Mitsuba's `diffuse` and
+  `conductor` are one-sided, so every BSDF is wrapped in `twosided`.
+- **Environment lookup.** Mitsuba's envmap uses u = atan2(x, -z) / 2pi; Glint's u = atan2(z, x) /
+  2pi: the exporter sets to_world = R_y(rotation_deg - 90). Mitsuba also puts the image's first
+  and last rows on the poles (v = i / (H - 1)) while Glint's GL_LINEAR lookup puts row centres at
+  (i + 0.5) / H with clamp-to-edge; the exporter resamples the map to 2H + 1 rows so that
+  Mitsuba's bilinear lookup equals Glint's. The HDR files are decoded by Mitsuba's RGBE reader
+  (Glint: stb_image); both map a texel to mantissa x 2^(exponent - 136).
+- **Mirror.** Only a white perfect mirror (colour exactly 1, roughness < 0.03) is exported, as
+  `conductor` with `material: none` (reflectance 1): Glint's Schlick F(colour, cos) is 1 only for
+  colour 1; any other colour rises towards white at grazing angles, which no Mitsuba conductor
+  reproduces.
+- **Not exported:** glossy (Glint's Schlick-weighted GGX coat with a (1 - F) Lambertian base has
+  no Mitsuba equivalent: `roughplastic` uses exact Fresnel and internal reflection), transparent
+  (Glint's thin glass: Schlick Fresnel, no bending, no inter-reflection between the two faces;
+  Mitsuba's `thindielectric` sums the inter-reflections with exact Fresnel), rough or coloured
+  metals (Schlick against complex-IOR Fresnel; Glint's separable Smith G), textures and coverage.
+- **Sampling, not the model:** Mitsuba samples lights directly (next-event estimation with MIS)
+  and uses Russian roulette from depth 5; Glint follows BSDF samples only and has no roulette.
+  Both are unbiased for these scenes; they change the noise, which is what the equal-time ratio
+  measures.
+- **Camera and film.** Both use a box pixel filter (Glint: uniform jitter inside the pixel),
+  a vertical field of view and a thin lens that is sharp on the plane at `focus_distance`
+  along the view axis. Mitsuba clips camera rays nearer than `near_clip` (set to 1e-6 of the
+  scene's size); Glint has no near plane.
+- **Precision: the huge-sphere floor.** Glint traces in float on the GPU (llvmpipe here). In
+  Mitsuba's `llvm_ad_rgb` variant (float32) the radius-1e5 floor sphere comes out at about half
+  the analytic radiance (albedo x sky = 0.41 on average for this floor; Glint gives 0.39-0.41 in
+  the unoccluded rows, Mitsuba llvm 0.19-0.26), consistent with rays leaving the floor re-hitting
+  it; `scalar_rgb` (which solves the sphere quadratic in double precision) agrees with Glint
+  (found by hand at 64x36, 128 spp). So that scene's bias row measures Mitsuba's float sphere,
+  not Glint; render it with scalar_rgb (GLINT_BENCH_MITSUBA_VARIANT=scalar_rgb bash bench/run.sh
+  --scenes huge_sphere_floor) for a meaningful bias.
+- **Mitsuba on Debian 12's LLVM 15.** Dr.Jit 1.5 (Mitsuba 3.9.1) emits `llvm.minimum`, which
+  LLVM 15's x86 back end cannot select: the process aborts ("LLVM ERROR: Cannot select ...
+  fminimum"). The harness probes each libLLVM in a child process; when none works it unpacks
+  Debian's libllvm19 package into bench/.venv/llvm (`apt-get download`, `dpkg -x`: nothing is
+  installed) and uses that, else falls back to `scalar_rgb`.
+"""
+
+
+def machine_info(gl):
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return cpu
+
+
+def ensure_llvm(allow_download):
+    variant, path = mx.choose_variant(log)
+    if variant == "llvm_ad_rgb" or not allow_download or not shutil.which("apt-get") or not shutil.which("dpkg"):
+        return variant, path
+    # No system libLLVM works with this Dr.Jit (Debian 12's LLVM 15 aborts on llvm.minimum):
+    # fetch Debian's libllvm19 package (no installation: unpacked into the git-ignored venv).
+    dest = os.path.join(HERE, ".venv", "llvm")
+    log("  fetching Debian's libllvm19 into bench/.venv/llvm (apt-get download; nothing installed)")
+    tmp = tempfile.mkdtemp()
+    try:
+        r = subprocess.run(["apt-get", "download", "libllvm19"], cwd=tmp, capture_output=True, text=True)
+        debs = glob.glob(os.path.join(tmp, "*.deb"))
+        if r.returncode != 0 or not debs:
+            log(f"  apt-get download libllvm19 failed: {r.stderr.strip()[:200]}")
+        else:
+            subprocess.run(["dpkg", "-x", debs[0], dest], check=True)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    os.environ.pop("GLINT_BENCH_MITSUBA_VARIANT", None)
+    return mx.choose_variant(log)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true",
+                    help="tiny sizes and sample counts (validation; a few minutes); writes to build-bench/quick/")
+    ap.add_argument("--scenes", nargs="+", choices=SCENES, default=SCENES)
+    ap.add_argument("--out", help="folder for RESULTS.md and plots (default: bench/, or build-bench/quick/ with --quick)")
+    ap.add_argument("--work", help="scratch folder for renders (default: build-bench/work or build-bench/quick/work)")
+    ap.add_argument("--glint", default=os.path.join(ROOT, "build", "glint"))
+    for k, v in FULL.items():
+        ap.add_argument("--" + k.replace("_", "-"), type=int, help=f"(full {v}, quick {QUICK[k]})")
+    ap.add_argument("--no-mitsuba", action="store_true")
+    ap.add_argument("--no-llvm-download", action="store_true",
+                    help="do not fetch libllvm19 when no system libLLVM works (use scalar_rgb)")
+    a = ap.parse_args()
+    cfg = dict(QUICK if a.quick else FULL)
+    for k in FULL:
+        if getattr(a, k) is not None:
+            cfg[k] = getattr(a, k)
+    cfg["quick"] = a.quick
+    out_dir = a.out or (os.path.join(ROOT, "build-bench", "quick") if a.quick else HERE)
+    work = a.work or os.path.join(out_dir if a.quick else os.path.join(ROOT, "build-bench"), "work")
+    os.makedirs(out_dir, exist_ok=True)
+    os.makedirs(work, exist_ok=True)
+    glint = os.path.abspath(a.glint)
+    if not os.path.exists(glint):
+        sys.exit(f"bench: {glint} not found (bash scripts/build.sh)")
+    make_scenes.main()
+    t_start = time.time()
+    env = {"date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "variant": "-", "llvm": None,
+           "mitsuba": "-"}
+    conv = None
+    if not a.no_mitsuba:
+        env["variant"], env["llvm"] = ensure_llvm(not a.no_llvm_download)
+        mi = mx._mitsuba()
+        env["mitsuba"] = mi.__version__
+        log(f"mitsuba {mi.__version__}, variant {env['variant']}")
+        hdr = os.path.join(ROOT, "..", "shared", "assets", "hangar_interior_1k.hdr")
+        if os.path.exists(hdr):
+            log("convention check")
+            conv = __import__("convention_check").run(glint, os.path.join(work, "convention"), hdr)
+    has_log = cli_has_log(glint)
+    log(f"glint render --log: {'available' if has_log else 'not available (metrics computed here only)'}")
+    results = {}
+    for name in a.scenes:
+        project = os.path.join(HERE, "scenes", name + ".glint")
+        log(f"{name}")
+        g = bench_glint(name, project, glint, os.path.join(work, name), cfg, has_log)
+        s = summarize(g["rows"])
+        r = {"glint": g, "summary": s, "size": (g["ref"].shape[1], g["ref"].shape[0])}
+        if not a.no_mitsuba:
+            r["mitsuba"] = bench_mitsuba(name, project, os.path.join(work, name, "mitsuba"), cfg, g, s)
+            if not r["mitsuba"]["exported"]:
+                log("  mitsuba: not exported: " + "; ".join(r["mitsuba"]["reasons"][:2]))
+        results[name] = r
+        env["gl"] = g["info"]["gl"]
+    env["gl_short"] = env.get("gl", "?").split(" on ")[-1].split(" (")[0] if env.get("gl") else "?"
+    env["cpu"] = machine_info(env.get("gl"))
+    prefix = ""
+    plot_files = plots(results, out_dir, prefix)
+    cmd = "bash bench/run.sh" + (" --quick" if a.quick else "")
+    write_results(results, conv, cfg, env, out_dir, prefix, plot_files, cmd)
+    # Raw numbers beside the report, for re-plotting without re-rendering.
+    raw = {n: {"glint": r["glint"]["rows"],
+               "mitsuba": r.get("mitsuba", {}).get("rows") if r.get("mitsuba", {}).get("exported") else None}
+           for n, r in results.items()}
+    with open(os.path.join(out_dir, f"{prefix}results.json"), "w") as f:
+        json.dump({"config": cfg, "env": env, "scenes": raw}, f, indent=1)
+    log(f"wrote {os.path.join(out_dir, prefix + 'RESULTS.md')} in {fmt_s(time.time() - t_start)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# The benchmark: speed against error for the bench scenes, and Mitsuba 3 as an independent
+# reference. Makes its own Python environment (bench/.venv, pinned by bench/requirements.txt),
+# builds Glint when build/glint is missing, then runs bench/run.py, which writes
+# bench/RESULTS.md and its plots. Arguments go to run.py (--quick: tiny validation run written
+# to build-bench/quick/; --help lists the rest).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+VENV=bench/.venv
+PY=${PYTHON:-python3}
+if [ ! -x "$VENV/bin/python" ]; then
+  "$PY" -m venv "$VENV" || {
+    echo "bench: '$PY -m venv' failed (on Debian: apt-get install python3-venv)" >&2; exit 1; }
+fi
+if ! cmp -s bench/requirements.txt "$VENV/.requirements-installed"; then
+  "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r bench/requirements.txt
+  cp bench/requirements.txt "$VENV/.requirements-installed"
+fi
+if [ ! -x build/glint ]; then
+  bash scripts/build.sh
+fi
+export PYTHONDONTWRITEBYTECODE=1
+exec "$VENV/bin/python" bench/run.py "$@"
