@@ -21,24 +21,29 @@ bool is_finite(vec3 v) {
   return !(isnan(v.x) || isnan(v.y) || isnan(v.z) || isinf(v.x) || isinf(v.y) || isinf(v.z));
 }
 
-// Moves a ray origin off a surface so the new ray does not re-hit it (Wachter and Binder,
-// "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems, ch. 6):
-// a fixed number of float ulps away from the surface, so the offset scales with |p|,
-// and a small absolute offset near the origin where ulps become tiny.
-// `n` is the geometric normal on the side the new ray leaves from.
-vec3 offset_ray_origin(vec3 p, vec3 n) {
-  const float origin_band = 1.0f / 32.0f;
-  const float float_scale = 1.0f / 65536.0f;
-  const float int_scale = 256.0f;
-  int ox = int(int_scale * n.x);
-  int oy = int(int_scale * n.y);
-  int oz = int(int_scale * n.z);
-  float px = intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0f ? -ox : ox));
-  float py = intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0f ? -oy : oy));
-  float pz = intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0f ? -oz : oz));
-  return vec3(abs(p.x) < origin_band ? p.x + float_scale * n.x : px,
-              abs(p.y) < origin_band ? p.y + float_scale * n.y : py,
-              abs(p.z) < origin_band ? p.z + float_scale * n.z : pz);
+// The distance a spawned ray's origin must keep from a surface, for a hit point computed to a
+// few ulps of `scale`: the largest coordinate magnitude that went into it (the hit point's own
+// and the shape's defining points: max(|centre|, radius) for a sphere, the largest corner
+// coordinate for a quad). A sphere of radius 1e5 used as a floor has its top near y = 0, but
+// its points are only known to ulps of 1e5 (0.008): an offset in ulps of p alone (1e-7 there)
+// would leave spawned rays below the computed surface (acne). SURFACE_OFFSET_EPS is 16 float
+// epsilons: the rounding of a reprojected sphere point or a barycentric quad point is a few
+// epsilons of `scale`, a ray leaving a sphere needs its origin outside by more than the
+// rounding of |o - c|^2 - r^2 (about 3 eps r^2, i.e. 1.5 eps r of height), and a ray leaving a
+// quad needs dot(p0 - o, n) to keep its sign (a few eps of the quad's size). hard_Reintersection
+// (tests/unit/hard_cases_test.cpp) passes from 8 epsilons and fails at 4; 16 is twice the
+// measured need. The small absolute term keeps the offset non-zero at the origin.
+const float SURFACE_OFFSET_EPS = 16.0f / 8388608.0f;
+const float SURFACE_OFFSET_MIN = 1e-30f;
+
+float surface_offset_distance(vec3 p, float scale) {
+  return SURFACE_OFFSET_EPS * max(max_component(abs(p)), scale) + SURFACE_OFFSET_MIN;
+}
+
+// p moved along the unit normal n (on the side the new ray leaves from) by
+// surface_offset_distance: the rounding of p + d n is at most half an ulp of |p|, far below d.
+vec3 offset_surface_point(vec3 p, vec3 n, float scale) {
+  return p + surface_offset_distance(p, scale) * n;
 }
 
 #endif

@@ -27,6 +27,26 @@ float intersect_sphere(Ray ray, vec3 center, float radius, float tmin, float tma
   return NO_HIT;
 }
 
+// The hit point of a sphere hit at t, put back onto the sphere: o + t d carries the rounding of
+// t times |d| (t can be 1e4 radii for a far camera, and t itself is only known to ulps of
+// |o - c|), while the reprojected point is within a few ulps of |c| + r of the surface.
+vec3 sphere_hit_point(Ray ray, float t, vec3 center, float radius) {
+  vec3 p = ray.origin + t * ray.direction;
+  return center + radius * normalize(p - center);
+}
+
+// The coordinate magnitude that bounds the rounding of a sphere's surface points: the
+// reprojected point rounds at ulps of r (r times a unit vector) and of |c| (the sum).
+float sphere_error_scale(vec3 center, float radius) {
+  return max(max_component(abs(center)), radius);
+}
+
+// The same for a quad: its largest corner coordinate.
+float quad_error_scale(vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
+  return max(max(max_component(abs(p0)), max_component(abs(p1))),
+             max(max_component(abs(p2)), max_component(abs(p3))));
+}
+
 // Triangles are tested with signed volumes (the ray's side of each edge, as in Woop et al.,
 // "Watertight Ray/Triangle Intersection", JCGT 2013): edge_volume(d, a, b) with a, b the edge's
 // endpoints relative to the ray origin. Swapping the endpoints negates it exactly (same
@@ -60,11 +80,14 @@ vec3 intersect_triangle(Ray ray, vec3 p0, vec3 p1, vec3 p2, float tmin, float tm
                       edge_volume(d, a, b), tmin, tmax);
 }
 
-// A quad hit: t (NO_HIT on a miss) and the texture coordinates interpolated over the
-// triangle that was hit.
+// A quad hit: t (NO_HIT on a miss), the texture coordinates interpolated over the triangle
+// that was hit, and the hit point from the barycentrics (p0 + b1 e1 + b2 e2): its rounding is
+// a few ulps of the corners, whatever the ray's origin and length (o + t d is off the plane
+// by the rounding of t, eps t, which grows with the camera's distance).
 struct QuadHit {
   float t;
   vec2 uv;
+  vec3 position;
 };
 
 // The quad (p0, p1, p2, p3) is the triangles (p0, p1, p2) and (p1, p3, p2). The volume of the
@@ -79,16 +102,20 @@ QuadHit intersect_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 uv0, ve
   vec3 a2 = p2 - ray.origin;
   vec3 a3 = p3 - ray.origin;
   float diagonal = edge_volume(d, a1, a2);
-  QuadHit hit = QuadHit(NO_HIT, vec2(0.0f));
+  QuadHit hit = QuadHit(NO_HIT, vec2(0.0f), vec3(0.0f));
   vec3 h = triangle_hit(d, a0, cross(p1 - p0, p2 - p0), diagonal, edge_volume(d, a2, a0),
                         edge_volume(d, a0, a1), tmin, tmax);
   if (h.x != NO_HIT) {
-    hit = QuadHit(h.x, (1.0f - h.y - h.z) * uv0 + h.y * uv1 + h.z * uv2);
+    hit = QuadHit(h.x, (1.0f - h.y - h.z) * uv0 + h.y * uv1 + h.z * uv2,
+                  p0 + h.y * (p1 - p0) + h.z * (p2 - p0));
     tmax = h.x;
   }
   h = triangle_hit(d, a1, cross(p3 - p1, p2 - p1), edge_volume(d, a3, a2), -diagonal,
                    edge_volume(d, a1, a3), tmin, tmax);
-  if (h.x != NO_HIT) hit = QuadHit(h.x, (1.0f - h.y - h.z) * uv1 + h.y * uv3 + h.z * uv2);
+  if (h.x != NO_HIT) {
+    hit = QuadHit(h.x, (1.0f - h.y - h.z) * uv1 + h.y * uv3 + h.z * uv2,
+                  p1 + h.y * (p3 - p1) + h.z * (p2 - p1));
+  }
   return hit;
 }
 

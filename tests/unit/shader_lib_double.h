@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 
 #include <glm/glm.hpp>
 
@@ -78,23 +77,6 @@ inline double atan(double y_over_x) { return std::atan(y_over_x); }
 inline double atan(double y, double x) { return std::atan2(y, x); }
 inline bool isnan(double x) { return std::isnan(x); }
 inline bool isinf(double x) { return std::isinf(x); }
-
-// GLSL's bit casts exist for float only. In double mode they round the value through float:
-// offset_ray_origin then moves a point a fixed number of FLOAT ulps, i.e. it is exactly as
-// accurate (and as conservative) as in the float build, not double-accurate. That is enough
-// for its purpose (the offset point must clear the surface, which the float offset does with
-// margin, and rounding p to float moves it by at most half a float ulp of the 256-ulp offset).
-inline int floatBitsToInt(double x) {
-  float f = static_cast<float>(x);
-  int i;
-  std::memcpy(&i, &f, sizeof i);
-  return i;
-}
-inline float intBitsToFloat(int i) {
-  float f;
-  std::memcpy(&f, &i, sizeof f);
-  return f;
-}
 
 // Mixed float-scalar/double-vector arithmetic (`0.5f * v`, `v / 2.0f`): glm's operator
 // templates want the scalar in the vector's own type.

@@ -55,7 +55,9 @@ namespace {
     static constexpr int kTransparent = NS::MATERIAL_TRANSPARENT;                              \
     static constexpr int kFilmic = NS::TONEMAP_FILMIC;                                         \
     static constexpr int kLinear = NS::TONEMAP_LINEAR;                                         \
-    GLINT_SHADER_FWD(NS, offset_ray_origin)                                                    \
+    GLINT_SHADER_FWD(NS, offset_surface_point)                                                 \
+    GLINT_SHADER_FWD(NS, sphere_hit_point)                                                     \
+    GLINT_SHADER_FWD(NS, sphere_error_scale)                                                   \
     GLINT_SHADER_FWD(NS, pcg_hash)                                                             \
     GLINT_SHADER_FWD(NS, rng_seed)                                                             \
     GLINT_SHADER_FWD(NS, rng_advance)                                                          \
