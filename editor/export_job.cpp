@@ -92,15 +92,8 @@ bool ExportJob::step(double slice_seconds) {
 
 void ExportJob::finish() {
   // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
-  Image image;
-  if (settings_.output.extension() == ".png") {
-    image = renderer_->read_display();
-  } else {
-    image = renderer_->read_accumulation();
-    for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
-  }
+  save_render(*renderer_, settings_.output);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  save_image(settings_.output, image);
   state_ = State::done;
 }
 

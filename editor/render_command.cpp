@@ -262,14 +262,7 @@ int run_render_command(int argc, char** argv) {
     double total = clock.seconds();
     if (interactive) std::fputc('\n', stderr);
 
-    Image image;
-    if (std::filesystem::path(o.output).extension() == ".png") {
-      image = renderer.read_display();
-    } else {
-      image = renderer.read_accumulation();
-      for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
-    }
-    save_image(o.output, image);
+    save_render(renderer, o.output);
     double pixel_samples = double(renderer.sample_count()) * width * height;
     std::fprintf(stderr, "glint: wrote %s (%dx%d, %lld spp, %.2f s, %.1f spp/s, %.2f Msamples/s)\n",
                  o.output.c_str(), width, height, static_cast<long long>(renderer.sample_count()), total,

@@ -285,4 +285,15 @@ Image GpuRenderer::read_display() {
   return image;
 }
 
+void save_render(GpuRenderer& renderer, const std::filesystem::path& file) {
+  Image image;
+  if (file.extension() == ".png") {
+    image = renderer.read_display();
+  } else {
+    image = renderer.read_accumulation();  // alpha holds the discarded-sample count
+    for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
+  }
+  save_image(file, image);
+}
+
 }  // namespace glint

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -86,5 +87,9 @@ class GpuRenderer {
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;
 };
+
+// Writes the render as a final image, chosen by the file's extension: .png is the tonemapped
+// display image; .hdr and .exr hold the linear radiance with alpha 1. Throws ImageError.
+void save_render(GpuRenderer& renderer, const std::filesystem::path& file);
 
 }  // namespace glint
