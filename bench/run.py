@@ -47,8 +47,8 @@ TARGETS = [1e-1, 1e-2, 1e-3]
 REF_SEED = 1000001
 MITSUBA_REF_SEED = 2000001
 
-FULL = dict(width=128, max_spp=512, ref_spp=16384, seeds=3, mitsuba_ref_spp=4096,
-            mitsuba_max_spp=256)
+FULL = dict(width=128, max_spp=256, ref_spp=4096, seeds=3, mitsuba_ref_spp=1024,
+            mitsuba_max_spp=128)
 QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=64, mitsuba_max_spp=8)
 
 
@@ -109,8 +109,11 @@ def time_to(fit, target, t_min, t_max, e_first, e_last):
     if fit[1] >= 0 or e_last > target:
         # Not measured down to the target: say where the fit would put it, not a number.
         if fit[1] < 0:
-            t = math.exp((math.log(target) - fit[0]) / fit[1])
-            return f"not reached (fit: {fmt_s(t)})"
+            log_t = (math.log(target) - fit[0]) / fit[1]
+            # A nearly flat fit extrapolates past any useful time (and past float range).
+            if log_t > math.log(1e7):
+                return "not reached (fit: > 100 days)"
+            return f"not reached (fit: {fmt_s(math.exp(log_t))})"
         return "not reached"
     return fmt_s(math.exp((math.log(target) - fit[0]) / fit[1]))
 
@@ -466,6 +469,8 @@ def machine_info(gl):
 
 
 def ensure_llvm(allow_download):
+    if os.environ.get("GLINT_BENCH_MITSUBA_VARIANT") == "scalar_rgb":
+        return "scalar_rgb", None  # asked for by the user (e.g. for the huge-sphere floor)
     variant, path = mx.choose_variant(log)
     if variant == "llvm_ad_rgb" or not allow_download or not shutil.which("apt-get") or not shutil.which("dpkg"):
         return variant, path
