@@ -58,43 +58,38 @@ std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create() {
   std::string errors;
   std::unique_ptr<HeadlessGLContext> result(new HeadlessGLContext());
 
+  // Makes the context on `display` current and keeps it, or records why it failed.
+  auto try_display = [&](EGLDisplay display, const std::string& platform) {
+    std::string why = "no display";
+    EGLContext context = display == EGL_NO_DISPLAY ? EGL_NO_CONTEXT : make_context(display, why);
+    if (context == EGL_NO_CONTEXT) {
+      errors += "  " + platform + ": " + why + "\n";
+      return false;
+    }
+    result->display_ = display;
+    result->context_ = context;
+    result->platform_ = platform;
+    return true;
+  };
+
   if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
     EGLint n = 0;
     eglQueryDevicesEXT(0, nullptr, &n);
     std::vector<EGLDeviceEXT> devices(static_cast<size_t>(n));
     if (n > 0) eglQueryDevicesEXT(n, devices.data(), &n);
-    for (EGLint i = 0; i < n; ++i) {
-      EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-      std::string why = "no display";
-      if (display != EGL_NO_DISPLAY) {
-        EGLContext context = make_context(display, why);
-        if (context != EGL_NO_CONTEXT) {
-          result->display_ = display;
-          result->context_ = context;
-          result->platform_ = "EGL device " + std::to_string(i);
-          return result;
-        }
-      }
-      errors += "  EGL device " + std::to_string(i) + ": " + why + "\n";
-    }
+    for (EGLint i = 0; i < n; ++i)
+      if (try_display(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
+                      "EGL device " + std::to_string(i)))
+        return result;
     if (n == 0) errors += "  EGL device platform: no devices\n";
   } else {
     errors += "  EGL device platform: not supported\n";
   }
 
   if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    std::string why = "no display";
-    if (display != EGL_NO_DISPLAY) {
-      EGLContext context = make_context(display, why);
-      if (context != EGL_NO_CONTEXT) {
-        result->display_ = display;
-        result->context_ = context;
-        result->platform_ = "surfaceless";
-        return result;
-      }
-    }
-    errors += "  Mesa surfaceless: " + why + "\n";
+    if (try_display(eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
+                    "surfaceless"))
+      return result;
   } else {
     errors += "  Mesa surfaceless platform: not supported\n";
   }
