@@ -73,7 +73,9 @@ namespace {
     GLINT_SHADER_FWD(NS, dielectric_f0)                                                        \
     GLINT_SHADER_FWD(NS, ggx_distribution)                                                     \
     GLINT_SHADER_FWD(NS, smith_g1)                                                             \
-    GLINT_SHADER_FWD(NS, sample_ggx_normal)                                                    \
+    GLINT_SHADER_FWD(NS, smith_g1_over_cos)                                                    \
+    GLINT_SHADER_FWD(NS, ggx_visible_normal_pdf)                                               \
+    GLINT_SHADER_FWD(NS, sample_ggx_visible_normal)                                            \
     GLINT_SHADER_FWD(NS, intersect_sphere)                                                     \
     GLINT_SHADER_FWD(NS, intersect_triangle)                                                   \
     GLINT_SHADER_FWD(NS, intersect_quad)                                                       \
