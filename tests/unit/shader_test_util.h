@@ -62,6 +62,12 @@ namespace {
     GLINT_SHADER_FWD(NS, rng_seed)                                                             \
     GLINT_SHADER_FWD(NS, rng_advance)                                                          \
     GLINT_SHADER_FWD(NS, rng_to_unit_float)                                                    \
+    GLINT_SHADER_FWD(NS, sobol_dimension0)                                                     \
+    GLINT_SHADER_FWD(NS, sobol_dimension1)                                                     \
+    GLINT_SHADER_FWD(NS, nested_uniform_scramble)                                              \
+    GLINT_SHADER_FWD(NS, sobol_pixel_seed)                                                     \
+    GLINT_SHADER_FWD(NS, sobol_sample_2d)                                                      \
+    GLINT_SHADER_FWD(NS, sobol_sample_1d)                                                      \
     GLINT_SHADER_FWD(NS, direction_to_uv)                                                      \
     GLINT_SHADER_FWD(NS, uv_to_direction)                                                      \
     GLINT_SHADER_FWD(NS, environment_uv)                                                       \
