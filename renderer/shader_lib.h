@@ -21,6 +21,7 @@ using uint = std::uint32_t;
 namespace {
 #include "shaders/lib/common.glsl"
 #include "shaders/lib/rng.glsl"
+#include "shaders/lib/sobol.glsl"
 #include "shaders/lib/mapping.glsl"
 #include "shaders/lib/sampling.glsl"
 #include "shaders/lib/intersect.glsl"

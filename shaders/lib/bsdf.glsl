@@ -47,12 +47,20 @@ float microfacet_reflection(float alpha, vec3 n, vec3 h, vec3 wo, vec3 wi) {
          smith_g1(alpha, dot(n, wi)) / (4.0f * cos_o);
 }
 
-// pdf of wi when h is drawn with pdf D(h) (n.h) and wi = reflect(-wo, h).
+// pdf of wi = reflect(-wo, h) when h is drawn from the visible normals D_wo(h): D_wo(h) times
+// the Jacobian 1 / (4 |wo.h|) of the reflection, i.e. G1(wo) D(h) / (4 n.wo) for wo.h > 0
+// (Heitz 2018, eq. 17). Written with G1(wo) / n.wo in one piece, so that it stays finite at
+// grazing wo; sample weights become F G1(wi), bounded by 1 at every angle.
 float microfacet_reflection_pdf(float alpha, vec3 n, vec3 h, vec3 wo) {
-  float cos_oh = abs(dot(wo, h));
-  if (cos_oh == 0.0f) return 0.0f;
-  float cos_h = dot(n, h);
-  return ggx_distribution(alpha, cos_h) * cos_h / (4.0f * cos_oh);
+  float cos_oh = dot(wo, h);
+  if (!(cos_oh > 0.0f)) return 0.0f;  // also NaN (h of wi = -wo)
+  return smith_g1_over_cos(alpha, dot(n, wo)) * ggx_distribution(alpha, dot(n, h)) * 0.25f;
+}
+
+// Visible-normal sample around n for wo (world space), as a world-space microfacet normal.
+vec3 sample_microfacet_normal(float alpha, mat3 frame, vec3 wo, vec2 u) {
+  vec3 wo_local = vec3(dot(frame[0], wo), dot(frame[1], wo), dot(frame[2], wo));
+  return frame * sample_ggx_visible_normal(alpha, wo_local, u);
 }
 
 vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
@@ -123,7 +131,7 @@ BsdfSample sample_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, float u_lobe, vec2 u)
   } else if (m.type == MATERIAL_GLOSSY && u_lobe >= fresnel_schlick(f0, cos_o)) {
     wi = frame * sample_cosine_hemisphere(u);
   } else {
-    vec3 h = frame * sample_ggx_normal(ggx_alpha(m), u);
+    vec3 h = sample_microfacet_normal(ggx_alpha(m), frame, wo, u);
     wi = reflect(-wo, h);
     if (dot(n, wi) <= 0.0f) return invalid;
     if (m.type == MATERIAL_TRANSPARENT && u_lobe >= fresnel_schlick(f0, cos_o)) {

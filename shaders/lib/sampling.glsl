@@ -67,15 +67,42 @@ float smith_g1(float alpha, float cos_v) {
   return 2.0f * c / (c + sqrt(a2 + (1.0f - a2) * c * c));
 }
 
-// A microfacet normal around +z with pdf D(h) cos(theta_h) (Walter et al. 2007).
-vec3 sample_ggx_normal(float alpha, vec2 u) {
+// G1(v) / |n.v| without the division: 2 / (c + sqrt(a^2 + (1 - a^2) c^2)). Finite at grazing
+// (2 / alpha at c = 0), where G1 and c both go to zero and their quotient would be 0 / 0.
+float smith_g1_over_cos(float alpha, float cos_v) {
+  float c = abs(cos_v);
+  float a2 = alpha * alpha;
+  return 2.0f / (c + sqrt(a2 + (1.0f - a2) * c * c));
+}
+
+// Density of the visible normals seen from wo (local frame, wo.z = n.wo >= 0):
+// D_wo(h) = G1(wo) max(0, wo.h) D(h) / (n.wo) (Heitz 2018, eq. 1).
+float ggx_visible_normal_pdf(float alpha, vec3 wo, vec3 h) {
+  float cos_oh = dot(wo, h);
+  if (!(cos_oh > 0.0f)) return 0.0f;  // also NaN
+  return smith_g1_over_cos(alpha, wo.z) * cos_oh * ggx_distribution(alpha, h.z);
+}
+
+// A microfacet normal around +z drawn from D_wo(h), for wo in the local frame with wo.z >= 0:
+// Dupuy and Benyoub, "Sound and Complete Visible Normal Sampling of GGX" (2023, spherical
+// caps; the same distribution as Heitz 2018). In the configuration stretched to alpha = 1 the
+// visible normals are c + v, with v the stretched wo and c uniform on the spherical cap
+// z > -v.z; the result is unstretched by (alpha x, alpha y, z).
+vec3 sample_ggx_visible_normal(float alpha, vec3 wo, vec2 u) {
+  vec3 v = normalize(vec3(alpha * wo.x, alpha * wo.y, max(wo.z, 0.0f)));
   float phi = TWO_PI * u.x;
-  float tan2 = alpha * alpha * u.y / (1.0f - u.y);
-  float cos_theta = 1.0f / sqrt(1.0f + tan2);
-  // sin = tan * cos, not sqrt(1 - cos^2): near the pole 1 - cos^2 cancels (in float, cos is
-  // 1 for tan2 < 6e-8, and at alpha = 0.03^2 theta was off by 9% on average).
-  float sin_theta = sqrt(tan2) * cos_theta;
-  return vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+  // z = 1 - u.y (1 + v.z) is uniform on (-v.z, 1]. sin^2 = (1 - z)(1 + z), not 1 - z^2: near
+  // the cap's pole (small u.y) 1 - z^2 cancels in float, and at alpha = 0.03^2 that pole is
+  // where the normals closest to n come from (the old sampler's cos/sin issue, once more).
+  float one_minus_z = u.y * (1.0f + v.z);
+  float z = 1.0f - one_minus_z;
+  float sin_theta = sqrt(max(0.0f, one_minus_z * (2.0f - one_minus_z)));
+  vec3 h = vec3(sin_theta * cos(phi) + v.x, sin_theta * sin(phi) + v.y, max(z + v.z, 0.0f));
+  // h = 0 needs c = -v exactly (u.y within 2^-24 of 1 and phi exactly opposite): measure
+  // zero, but normalize(0) is NaN; the pole is a harmless stand-in.
+  vec3 m = vec3(alpha * h.x, alpha * h.y, h.z);
+  if (dot(m, m) == 0.0f) return vec3(0.0f, 0.0f, 1.0f);
+  return normalize(m);
 }
 
 #endif

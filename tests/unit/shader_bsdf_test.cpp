@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "ggx_reference.h"
 #include "shader_test_util.h"
 
 namespace glint::shader_test {
@@ -171,8 +172,9 @@ TYPED_TEST(ShaderBsdf, SampledDirectionsFollowThePdf) {
 // The coat's share of a glossy surface's albedo is at most the visible-normal average of its
 // Fresnel term, F_vis = E[F(F0, h.wo) G1(wo) max(0, wo.h) / (n.wo n.h)] over h ~ D(h) n.h
 // (the weights average to 1: the projected area of the visible microfacets is n.wo); the
-// Lambertian base adds (1 - F(F0, n.wo)). Estimated with the double build's GGX sampler and
-// Smith G1 and an independent Fresnel; returns (F_vis, its standard error).
+// Lambertian base adds (1 - F(F0, n.wo)). Estimated with the reference sampler of D(h) n.h
+// (ggx_reference.h, independent of sample_bsdf's), the double build's Smith G1 and an
+// independent Fresnel; returns (F_vis, its standard error).
 std::pair<double, double> glossy_coat_bound(double roughness, double cos_o, Uniform& u, int n) {
   const Frame local(dvec3(0, 0, 1));
   const dvec3 wo = local.to_world(cos_o, 0.0);
@@ -180,7 +182,7 @@ std::pair<double, double> glossy_coat_bound(double roughness, double cos_o, Unif
   const double f0 = dielectric_f0(kIor);
   double sum = 0, sum2 = 0;
   for (int i = 0; i < n; ++i) {
-    dvec3 h = DoubleLib::sample_ggx_normal(alpha, DoubleLib::v2(u(), u()));
+    dvec3 h = walter_ggx_normal(alpha, u.vec2());
     double cos_oh = glm::dot(wo, h);
     double v = cos_oh <= 0 ? 0.0
                            : schlick(f0, cos_oh) * DoubleLib::smith_g1(alpha, cos_o) * cos_oh / (cos_o * h.z);

@@ -100,6 +100,7 @@ GLINT_DOUBLE_MIXED_OPS(glm::dvec4)
 namespace {
 #undef GLINT_COMMON_GLSL
 #undef GLINT_RNG_GLSL
+#undef GLINT_SOBOL_GLSL
 #undef GLINT_MAPPING_GLSL
 #undef GLINT_SAMPLING_GLSL
 #undef GLINT_INTERSECT_GLSL
@@ -109,6 +110,7 @@ namespace {
 #define float double
 #include "shaders/lib/common.glsl"
 #include "shaders/lib/rng.glsl"
+#include "shaders/lib/sobol.glsl"
 #include "shaders/lib/mapping.glsl"
 #include "shaders/lib/sampling.glsl"
 #include "shaders/lib/intersect.glsl"

@@ -1,6 +1,6 @@
 // Frames, warps and the GGX distribution of shaders/lib/sampling.glsl, in float and double:
-// orthonormal bases, disk and cosine-hemisphere warps and the GGX normal sampler against
-// their densities (chi-square), and the normalisation of D.
+// orthonormal bases, disk and cosine-hemisphere warps against their densities (chi-square),
+// and the normalisation of D. The visible-normal sampler: shader_vndf_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,52 +107,6 @@ TYPED_TEST(ShaderSampling, CosineHemisphereMatchesCosineOverPi) {
   }
   ChiSquareResult r = chi_square_test(observed, expected);
   EXPECT_GE(r.p_value, kChiSquareAlpha) << r.describe();
-}
-
-// The probability that the GGX sampler's normal has theta in [t0, t1]: the integral of
-// D(h) cos(theta) over that band, D from the double build, by adaptive quadrature.
-double ggx_band_probability(double alpha, double t0, double t1) {
-  auto f = [alpha](double theta) {
-    double c = std::cos(theta);
-    return 2 * kPi * DoubleLib::ggx_distribution(alpha, c) * c * std::sin(theta);
-  };
-  return integrate_with_breaks(f, t0, t1, {std::atan(alpha)}, 1e-10);
-}
-
-// theta as a function of w in [0,1]: w = atan(tan(theta) / alpha) * 2 / pi spreads the
-// distribution's mass over [0,1] for any alpha, so equal w bins all get samples.
-double theta_of_w(double w, double alpha) { return std::atan(alpha * std::tan(0.5 * kPi * w)); }
-double w_of_theta(double theta, double alpha) { return std::atan(std::tan(theta) / alpha) * 2 / kPi; }
-
-// sample_ggx_normal has pdf D(h) cos(theta_h): 40 bins in w (above) times 8 azimuth bins,
-// expected counts from the quadrature of D, 2e5 samples per alpha, chi-square as above. Also
-// at the glossy coat's smallest alpha, 0.03^2, where theta is ~1e-3 and float rounding shows.
-TYPED_TEST(ShaderSampling, GgxNormalsFollowDTimesCosine) {
-  using L = TypeParam;
-  const int nw = 40, nphi = 8, n = 200000;
-  Uniform u(25);
-  for (double alpha : {0.05, 0.3, 0.8, 0.0009}) {
-    std::vector<double> observed(nw * nphi, 0.0), expected(nw * nphi, 0.0);
-    for (int k = 0; k < nw; ++k) {
-      double p = ggx_band_probability(alpha, theta_of_w(double(k) / nw, alpha),
-                                      k + 1 == nw ? kPi / 2 : theta_of_w(double(k + 1) / nw, alpha));
-      for (int j = 0; j < nphi; ++j) expected[k * nphi + j] = n * p / nphi;
-    }
-    for (int i = 0; i < n; ++i) {
-      dvec3 h = to_d(L::sample_ggx_normal(typename L::Real(alpha), L::v2(u(), u())));
-      ASSERT_NEAR(glm::length(h), 1.0, 8 * L::kEps);
-      ASSERT_GT(h.z, 0.0);
-      // atan2, not acos(h.z): near the pole a float h.z resolves theta only to ~3e-4.
-      double theta = std::atan2(std::sqrt(h.x * h.x + h.y * h.y), h.z);
-      int wi = std::min(nw - 1, int(w_of_theta(theta, alpha) * nw));
-      double phi = std::atan2(h.y, h.x);
-      if (phi < 0) phi += 2 * kPi;
-      int pj = std::min(nphi - 1, int(phi / (2 * kPi) * nphi));
-      observed[wi * nphi + pj] += 1;
-    }
-    ChiSquareResult r = chi_square_test(observed, expected);
-    EXPECT_GE(r.p_value, kChiSquareAlpha) << "alpha = " << alpha << ": " << r.describe();
-  }
 }
 
 // The integral of D(h) cos(theta_h) over the hemisphere is 1. Quadrature: composite Simpson

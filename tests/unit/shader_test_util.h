@@ -62,6 +62,12 @@ namespace {
     GLINT_SHADER_FWD(NS, rng_seed)                                                             \
     GLINT_SHADER_FWD(NS, rng_advance)                                                          \
     GLINT_SHADER_FWD(NS, rng_to_unit_float)                                                    \
+    GLINT_SHADER_FWD(NS, sobol_dimension0)                                                     \
+    GLINT_SHADER_FWD(NS, sobol_dimension1)                                                     \
+    GLINT_SHADER_FWD(NS, nested_uniform_scramble)                                              \
+    GLINT_SHADER_FWD(NS, sobol_pixel_seed)                                                     \
+    GLINT_SHADER_FWD(NS, sobol_sample_2d)                                                      \
+    GLINT_SHADER_FWD(NS, sobol_sample_1d)                                                      \
     GLINT_SHADER_FWD(NS, direction_to_uv)                                                      \
     GLINT_SHADER_FWD(NS, uv_to_direction)                                                      \
     GLINT_SHADER_FWD(NS, environment_uv)                                                       \
@@ -73,7 +79,9 @@ namespace {
     GLINT_SHADER_FWD(NS, dielectric_f0)                                                        \
     GLINT_SHADER_FWD(NS, ggx_distribution)                                                     \
     GLINT_SHADER_FWD(NS, smith_g1)                                                             \
-    GLINT_SHADER_FWD(NS, sample_ggx_normal)                                                    \
+    GLINT_SHADER_FWD(NS, smith_g1_over_cos)                                                    \
+    GLINT_SHADER_FWD(NS, ggx_visible_normal_pdf)                                               \
+    GLINT_SHADER_FWD(NS, sample_ggx_visible_normal)                                            \
     GLINT_SHADER_FWD(NS, intersect_sphere)                                                     \
     GLINT_SHADER_FWD(NS, intersect_triangle)                                                   \
     GLINT_SHADER_FWD(NS, intersect_quad)                                                       \

@@ -1,0 +1,76 @@
+// Owen-scrambled Sobol points with hash-based scrambling and Burley's padding (Burley 2020,
+// "Practical Hash-based Owen Scrambling", JCGT 9(4)): every dimension pair is the first two
+// Sobol dimensions, with its own shuffle of the sample index and its own scramble of each
+// coordinate. Needs rng.glsl (pcg_hash, rng_to_unit_float).
+#ifndef GLINT_SOBOL_GLSL
+#define GLINT_SOBOL_GLSL
+
+// Sobol dimension 0 as 32-bit fixed point: direction numbers v_k = 2^(31-k), i.e. the
+// van der Corput radical inverse (the bit reversal of the index).
+uint sobol_dimension0(uint index) { return bitfieldReverse(index); }
+
+// Sobol dimension 1: primitive polynomial x + 1 (degree s = 1, m_1 = 1). The recurrence of
+// Bratley and Fox, m_k = 2 m_(k-1) xor m_(k-1), with v_k = m_k / 2^k in 32-bit fixed point
+// (V_k = m_k << (32 - k)), is V_k = V_(k-1) xor (V_(k-1) >> 1), starting from V_1 = 2^31:
+// the direction numbers are generated here, one per index bit.
+uint sobol_dimension1(uint index) {
+  uint result = 0u;
+  uint v = 0x80000000u;
+  for (uint i = index; i != 0u; i >>= 1u) {
+    if ((i & 1u) != 0u) result ^= v;
+    v ^= v >> 1u;
+  }
+  return result;
+}
+
+// A bijection of 32-bit values in which bit i of the result depends only on bits 0..i of the
+// input (adding, and xor with a multiple by an even constant, carry only upwards): applied to
+// the bit-reversed value it flips every binary digit depending only on the more significant
+// ones, which is an Owen scramble (Burley 2020, sec. 3, with the Laine-Karras style hash and
+// the constants given there).
+uint laine_karras_permutation(uint x, uint seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+// Owen scramble of a 32-bit fixed-point value in [0,1), the tree of random flips given by seed.
+uint nested_uniform_scramble(uint x, uint seed) {
+  return bitfieldReverse(laine_karras_permutation(bitfieldReverse(x), seed));
+}
+
+// The pixel's scrambling seed, from the pixel and the project's seed (rng_seed's chain, with
+// a domain constant so that it is not the seed of any PCG sample stream).
+uint sobol_pixel_seed(uint pixel_x, uint pixel_y, uint seed) {
+  return pcg_hash(pixel_x + pcg_hash(pixel_y + pcg_hash(seed ^ 0x5eed50b1u)));
+}
+
+// Seeds of one dimension (pair): independent for every (pixel seed, dimension, kind).
+uint sobol_dimension_seed(uint pixel_seed, uint dimension, uint kind) {
+  return pcg_hash(pixel_seed + pcg_hash(dimension + pcg_hash(kind)));
+}
+
+// Point sample_index of dimension pair dimension_pair (dimensions 2 d and 2 d + 1) in [0,1)^2.
+// The index is Owen-scrambled first (a shuffle): the first 2^k indices of a pixel map to one
+// aligned block of 2^k Sobol indices, which is a (0,k,2)-net, so every power-of-two prefix of
+// a progressive render stays stratified; a different shuffle per pair decorrelates the pairs.
+vec2 sobol_sample_2d(uint sample_index, uint pixel_seed, uint dimension_pair) {
+  uint seed = sobol_dimension_seed(pixel_seed, dimension_pair, 2u);
+  uint index = nested_uniform_scramble(sample_index, seed);
+  uint x = nested_uniform_scramble(sobol_dimension0(index), pcg_hash(seed));
+  uint y = nested_uniform_scramble(sobol_dimension1(index), pcg_hash(seed + 1u));
+  return vec2(rng_to_unit_float(x), rng_to_unit_float(y));
+}
+
+// One dimension in [0,1): a shuffled, scrambled van der Corput sequence, seeded apart from the
+// pairs (a 1-D dimension d and the pair d are independent).
+float sobol_sample_1d(uint sample_index, uint pixel_seed, uint dimension) {
+  uint seed = sobol_dimension_seed(pixel_seed, dimension, 1u);
+  uint index = nested_uniform_scramble(sample_index, seed);
+  return rng_to_unit_float(nested_uniform_scramble(sobol_dimension0(index), pcg_hash(seed)));
+}
+
+#endif
