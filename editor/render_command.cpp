@@ -30,6 +30,8 @@ const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
     "                    [--width W] [--height H] [--seed S]\n"
     "                    [--reference REF.exr --log OUT.csv]\n"
+    "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
+    "                    [--no-roulette] [--clamp L]\n"
     "\n"
     "Renders a project headlessly (EGL; no window or display needed).\n"
     "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
@@ -52,6 +54,14 @@ const char* const kUsage =
     "                       relmse_trimmed drops the worst 0.1% of pixels first\n"
     "                     mape: mean of |x-r|/(|r|+0.01); mean_bias: relative error of the\n"
     "                       mean luminance; nonfinite: non-finite samples discarded\n"
+    "Estimator (not saved in projects; the defaults are unbiased):\n"
+    "  --sampler S        random numbers: pcg (independent) or sobol (Owen-scrambled Sobol,\n"
+    "                     low discrepancy); default pcg\n"
+    "  --no-light-sampling  follow BSDF samples only: no shadow rays to emitting shapes\n"
+    "  --no-env-sampling  no shadow rays to the environment map\n"
+    "  --no-roulette      no Russian roulette (every path runs to max_bounces)\n"
+    "  --clamp L          scale samples brighter than luminance L down to L: removes\n"
+    "                     fireflies but BIASED (darker); never use it for references\n"
     "Exit codes: 0 done, 1 bad project or failed render, 2 bad arguments.\n";
 
 struct Options {
@@ -62,6 +72,7 @@ struct Options {
   std::optional<long> width, height, seed;
   std::string reference;  // with `log`: write a convergence log against this image
   std::string log;
+  RenderOptions estimator;
 };
 
 struct UsageError {
@@ -100,6 +111,22 @@ Options parse(int argc, char** argv) {
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
     else if (a == "--reference") o.reference = value();
     else if (a == "--log") o.log = value();
+    else if (a == "--sampler") {
+      std::string v = value();
+      if (v == "pcg") o.estimator.sampler = SamplerKind::pcg;
+      else if (v == "sobol") o.estimator.sampler = SamplerKind::sobol;
+      else throw UsageError{"--sampler expects pcg or sobol, got '" + v + "'"};
+    } else if (a == "--no-light-sampling") o.estimator.light_sampling = false;
+    else if (a == "--no-env-sampling") o.estimator.environment_sampling = false;
+    else if (a == "--no-roulette") o.estimator.russian_roulette = false;
+    else if (a == "--clamp") {
+      std::string v = value();
+      char* end = nullptr;
+      double c = std::strtod(v.c_str(), &end);
+      if (v.empty() || *end != '\0' || !std::isfinite(c) || c <= 0)
+        throw UsageError{"--clamp expects a positive luminance, got '" + v + "'"};
+      o.estimator.clamp = static_cast<float>(c);
+    }
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
     else if (o.project.empty()) o.project = a;
     else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
@@ -213,6 +240,9 @@ int run_render_command(int argc, char** argv) {
     std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
                  gl_renderer_name().c_str(), context->platform().c_str());
     GpuRenderer renderer;
+    renderer.set_options(o.estimator);
+    if (o.estimator.clamp > 0)
+      std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
     renderer.sync(scene, width, height);
 
     const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);

@@ -46,12 +46,12 @@ GpuRenderer::GpuRenderer() {
   trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
-  glCreateBuffers(4, buffers_);
+  glCreateBuffers(5, buffers_);
 }
 
 GpuRenderer::~GpuRenderer() {
   resize(0, 0);
-  glDeleteBuffers(4, buffers_);
+  glDeleteBuffers(5, buffers_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   if (texture_array_) glDeleteTextures(1, &texture_array_);
@@ -82,21 +82,26 @@ void GpuRenderer::resize(int width, int height) {
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   SceneDigests d = digest_scene(scene);
   SyncResult result;
-  const bool geometry_changed =
-      first_sync_ || d.geometry != digests_.geometry || d.materials != digests_.materials;
+  const glm::dvec3 origin = render_origin(scene.camera.position);
+  const bool geometry_changed = first_sync_ || d.geometry != digests_.geometry ||
+                                d.materials != digests_.materials || origin != origin_;
   PackedScene packed;
-  if (geometry_changed) packed = pack_scene(scene);
+  if (geometry_changed) packed = pack_scene(scene, origin);
   // Images first: if one fails to load, nothing has changed yet. Textures are reloaded only
   // when their files or the set of layers in use change, not on every material edit.
   if (first_sync_ || d.textures != digests_.textures || (geometry_changed && packed.layers != layers_))
     upload_textures(scene, packed.layers);
   if (first_sync_ || d.environment != digests_.environment) upload_environment(scene);
-  if (geometry_changed) upload_geometry(packed);
+  if (geometry_changed) {
+    upload_geometry(packed);
+    origin_ = origin;
+  }
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;
   }
-  if (first_sync_ || d.radiance() != digests_.radiance()) result.accumulation_reset = true;
+  if (first_sync_ || d.radiance() != digests_.radiance() || options_ != synced_options_)
+    result.accumulation_reset = true;
   if (result.accumulation_reset) set_frame_uniforms(scene);  // the aspect ratio may have changed
   if (first_sync_ || d.display != digests_.display) {
     tonemap_program_->set("u_exposure", scene.display.exposure);
@@ -115,6 +120,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
       if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   }
   digests_ = d;
+  synced_options_ = options_;
   first_sync_ = false;
   return result;
 }
@@ -123,6 +129,8 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_storage(buffers_[0], packed.spheres);
   upload_storage(buffers_[1], packed.quads);
   upload_storage(buffers_[2], packed.materials);
+  upload_storage(buffers_[4], packed.lights);
+  light_count_ = static_cast<int>(packed.lights.size());
   trace_program_->set("u_sphere_count", static_cast<int>(packed.spheres.size()));
   trace_program_->set("u_quad_count", static_cast<int>(packed.quads.size()));
 }
@@ -180,10 +188,15 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   p.set("u_env_textured", textured ? 1 : 0);
   p.set("u_env_rotation", glm::radians(env.rotation_deg));
   p.set("u_max_bounces", scene.render.max_bounces);
+  p.set("u_light_count", options_.light_sampling ? light_count_ : 0);
+  p.set("u_env_select", 0.0f);
+  p.set("u_russian_roulette", options_.russian_roulette ? 1 : 0);
+  p.set("u_clamp", options_.clamp);
+  p.set("u_sobol", options_.sampler == SamplerKind::sobol ? 1 : 0);
   p.set("u_seed", static_cast<unsigned>(scene.render.seed));
   float aspect = height_ > 0 ? static_cast<float>(width_) / static_cast<float>(height_) : 1.0f;
   gpu::CameraFrame cam = make_camera_frame(scene.camera, aspect);
-  p.set("u_cam_origin", cam.origin);
+  p.set("u_cam_origin", glm::vec3(glm::dvec3(scene.camera.position) - origin_));
   p.set("u_cam_right", cam.right);
   p.set("u_cam_up", cam.up);
   p.set("u_cam_forward", cam.forward);
@@ -206,7 +219,7 @@ void GpuRenderer::trace(int samples) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
   glUseProgram(p.id());
-  for (GLuint i = 0; i < 4; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(0, accumulation_[current_]);
   glBindTextureUnit(1, texture_array_);
   glBindTextureUnit(2, environment_texture_);

@@ -14,6 +14,7 @@
 
 #include "renderer/gpu_scene.h"
 #include "renderer/image.h"
+#include "renderer/render_options.h"
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
 
@@ -36,6 +37,10 @@ class GpuRenderer {
   // Brings the GPU state up to date with a validated scene rendered at width x height.
   // Throws ImageError if a texture cannot be loaded; the previous state is then kept.
   SyncResult sync(const Scene& scene, int width, int height);
+
+  // Takes effect at the next sync, which then restarts the accumulation if they changed.
+  void set_options(const RenderOptions& options) { options_ = options; }
+  const RenderOptions& options() const { return options_; }
 
   // Adds `samples` samples to every pixel in one pass.
   void trace(int samples);
@@ -72,7 +77,7 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  GLuint buffers_[4] = {0, 0, 0, 0};  // spheres, quads, materials, layer sizes
+  GLuint buffers_[5] = {0, 0, 0, 0, 0};  // spheres, quads, materials, layer sizes, lights
   GLuint texture_array_ = 0;
   GLuint environment_texture_ = 0;
 
@@ -83,6 +88,10 @@ class GpuRenderer {
   bool display_stale_ = true;
   bool first_sync_ = true;
   SceneDigests digests_;
+  RenderOptions options_;
+  glm::dvec3 origin_{0};  // render_origin of the packed scene
+  RenderOptions synced_options_;
+  int light_count_ = 0;
   std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;

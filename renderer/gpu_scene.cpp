@@ -1,6 +1,7 @@
 #include "renderer/gpu_scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace glint {
 namespace {
@@ -20,9 +21,58 @@ int material_index(const Scene& scene, const std::string& name) {
   return std::max(find_material(scene, name), 0);
 }
 
+double quad_area(const Quad& q) {
+  glm::dvec3 p0(q.corners[0]), p1(q.corners[1]), p2(q.corners[2]), p3(q.corners[3]);
+  return 0.5 * (glm::length(glm::cross(p1 - p0, p2 - p0)) + glm::length(glm::cross(p3 - p1, p2 - p1)));
+}
+
+// Selection pdfs in proportion to power, accumulated in double so the cdf is monotone and its
+// last entry exactly 1 whatever the number of lights.
+void add_lights(const Scene& scene, PackedScene& packed) {
+  std::vector<double> power;
+  auto consider = [&](int kind, int index, const std::string& material, double area, glm::ivec4& slot) {
+    const Material& m = scene.materials[static_cast<size_t>(material_index(scene, material))];
+    double p = emitter_power(m.emission, area);
+    if (!(p > 0)) return;
+    slot.y = static_cast<int>(packed.lights.size());
+    packed.lights.push_back({glm::ivec4(kind, index, 0, 0), glm::vec4(0)});
+    power.push_back(p);
+  };
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& s = scene.spheres[i];
+    consider(0, static_cast<int>(i), s.material, 4.0 * 3.14159265358979 * double(s.radius) * s.radius,
+             packed.spheres[i].material);
+  }
+  for (size_t i = 0; i < scene.quads.size(); ++i)
+    consider(1, static_cast<int>(i), scene.quads[i].material, quad_area(scene.quads[i]),
+             packed.quads[i].material);
+  double total = 0;
+  for (double p : power) total += p;
+  double running = 0;
+  for (size_t i = 0; i < power.size(); ++i) {
+    running += power[i];
+    packed.lights[i].select = glm::vec4(static_cast<float>(power[i] / total),
+                                        i + 1 == power.size() ? 1.0f : static_cast<float>(running / total), 0, 0);
+  }
+}
+
 }  // namespace
 
-PackedScene pack_scene(const Scene& scene) {
+double emitter_power(const glm::vec3& emission, double area) {
+  double lum = 0.2126 * emission.x + 0.7152 * emission.y + 0.0722 * emission.z;
+  return std::isfinite(lum * area) ? std::max(lum, 0.0) * area : 0.0;
+}
+
+glm::dvec3 render_origin(const glm::vec3& camera_position) {
+  glm::dvec3 c(camera_position);
+  double m = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)});
+  if (!(m >= 1024.0) || !std::isfinite(m)) return glm::dvec3(0);
+  double cell = std::exp2(std::floor(std::log2(m)) - 6.0);
+  return glm::round(c / cell) * cell;
+}
+
+PackedScene pack_scene(const Scene& scene, const glm::dvec3& origin) {
+  auto local = [&](const glm::vec3& p) { return glm::vec3(glm::dvec3(p) - origin); };
   PackedScene packed;
   for (const Material& m : scene.materials) {
     GpuMaterial g{};
@@ -36,21 +86,22 @@ PackedScene pack_scene(const Scene& scene) {
     packed.materials.push_back(g);
   }
   for (const Sphere& s : scene.spheres)
-    packed.spheres.push_back({glm::vec4(s.center, s.radius),
-                              glm::ivec4(material_index(scene, s.material), 0, 0, 0)});
+    packed.spheres.push_back({glm::vec4(local(s.center), s.radius),
+                              glm::ivec4(material_index(scene, s.material), -1, 0, 0)});
   for (const Quad& q : scene.quads) {
     GpuQuad g{};
-    g.p0 = glm::vec4(q.corners[0], 0);
-    g.p1 = glm::vec4(q.corners[1], 0);
-    g.p2 = glm::vec4(q.corners[2], 0);
-    g.p3 = glm::vec4(q.corners[3], 0);
+    g.p0 = glm::vec4(local(q.corners[0]), 0);
+    g.p1 = glm::vec4(local(q.corners[1]), 0);
+    g.p2 = glm::vec4(local(q.corners[2]), 0);
+    g.p3 = glm::vec4(local(q.corners[3]), 0);
     g.uv01 = glm::vec4(q.uvs[0], q.uvs[1]);
     g.uv23 = glm::vec4(q.uvs[2], q.uvs[3]);
     g.normal = glm::vec4(
         glm::normalize(glm::cross(q.corners[1] - q.corners[0], q.corners[2] - q.corners[0])), 0);
-    g.material = glm::ivec4(material_index(scene, q.material), 0, 0, 0);
+    g.material = glm::ivec4(material_index(scene, q.material), -1, 0, 0);
     packed.quads.push_back(g);
   }
+  add_lights(scene, packed);
   return packed;
 }
 

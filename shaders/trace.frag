@@ -5,11 +5,13 @@
 // (ping-pong); the exact sample count lives on the CPU.
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
+#include "lib/sobol.glsl"
 #include "lib/mapping.glsl"
 #include "lib/sampling.glsl"
 #include "lib/intersect.glsl"
 #include "lib/camera.glsl"
 #include "lib/bsdf.glsl"
+#include "lib/lights.glsl"
 
 struct GpuSphere {
   vec4 center_radius;
@@ -35,7 +37,13 @@ struct GpuMaterial {
 layout(std430, binding = 0) readonly buffer Spheres { GpuSphere spheres[]; };
 layout(std430, binding = 1) readonly buffer Quads { GpuQuad quads[]; };
 layout(std430, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
+struct GpuLight {
+  ivec4 shape;   // x: 0 sphere, 1 quad; y: its index
+  vec4 select;   // x: pdf of picking it, y: cdf
+};
+
 layout(std430, binding = 3) readonly buffer LayerSizes { ivec4 layer_sizes[]; };
+layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
 
 layout(binding = 0) uniform sampler2D u_previous;
 layout(binding = 1) uniform sampler2DArray u_textures;
@@ -59,13 +67,32 @@ uniform float u_cam_focus;
 uniform vec3 u_env_color;  // colour * intensity, or intensity alone when textured
 uniform bool u_env_textured;
 uniform float u_env_rotation;
+// Next-event estimation: u_light_count emitting shapes, picked with probability
+// (1 - u_env_select) times their power share; the environment map with u_env_select.
+uniform int u_light_count;
+uniform float u_env_select;
+uniform bool u_russian_roulette;
+uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
+uniform bool u_sobol;   // Owen-scrambled Sobol points instead of independent PCG numbers
 
 layout(location = 0) out vec4 out_accumulation;
 
+// The sample's random numbers. PCG: one hashed stream per (pixel, sample, seed). Sobol: the
+// sample's point in dimension g_dimension of the pixel's scrambled sequence; every call takes
+// the next dimension (1-D and 2-D dimensions are scrambled independently, sobol.glsl).
 uint g_rng;
+uint g_sample_index;
+uint g_pixel_seed;
+uint g_dimension;
 float rand() {
+  if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, g_dimension++);
   g_rng = rng_advance(g_rng);
   return rng_to_unit_float(g_rng);
+}
+vec2 rand2() {
+  if (u_sobol) return sobol_sample_2d(g_sample_index, g_pixel_seed, g_dimension++);
+  float a = rand();
+  return vec2(a, rand());
 }
 
 vec4 texture_lookup(int layer, vec2 uv) {
@@ -83,6 +110,14 @@ vec3 environment(vec3 d) {
   return u_env_color * texture(u_environment, environment_uv(d, u_env_rotation)).rgb;
 }
 
+// Importance sampling of the environment map (placeholder until the distribution lands).
+struct EnvironmentSample {
+  vec3 wi;
+  float pdf;
+};
+EnvironmentSample sample_environment_map(vec2 u) { return EnvironmentSample(vec3(0.0, 1.0, 0.0), 0.0); }
+float environment_map_pdf(vec3 d) { return 0.0; }
+
 struct SceneHit {
   float t;
   vec3 position;  // on the surface to a few ulps of error_scale (not o + t d)
@@ -90,10 +125,11 @@ struct SceneHit {
   vec3 normal;  // geometric, unit, not yet flipped
   vec2 uv;
   int material;
+  int light;  // index into lights[] when the shape emits, else -1
 };
 
 SceneHit intersect_scene(Ray ray) {
-  SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1);
+  SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1, -1);
   int sphere_index = -1;
   for (int i = 0; i < u_sphere_count; ++i) {
     vec4 s = spheres[i].center_radius;
@@ -120,6 +156,7 @@ SceneHit intersect_scene(Ray ray) {
     hit.normal = q.normal.xyz;
     hit.error_scale = quad_error_scale(q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz);
     hit.material = q.material.x;
+    hit.light = q.material.y;
   } else if (sphere_index >= 0) {
     vec4 s = spheres[sphere_index].center_radius;
     hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
@@ -127,6 +164,7 @@ SceneHit intersect_scene(Ray ray) {
     hit.normal = normalize(hit.position - s.xyz);
     hit.uv = direction_to_uv(hit.normal);
     hit.material = spheres[sphere_index].material.x;
+    hit.light = spheres[sphere_index].material.y;
   }
   return hit;
 }
@@ -134,16 +172,149 @@ SceneHit intersect_scene(Ray ray) {
 // Coverage pass-throughs allowed per path: a stack of cut-out surfaces deeper than this
 // is treated as opaque at the last one.
 const int MAX_PASS_THROUGH = 64;
+// Russian roulette starts after this many bounces (the first ones carry most of the light).
+const int ROULETTE_START = 3;
+
+vec3 material_emission(GpuMaterial gm, vec2 uv) {
+  return gm.emission.rgb * texture_lookup(gm.layers.y, uv).rgb;
+}
+
+SurfaceMaterial surface_material(GpuMaterial gm, vec4 color_tex, vec2 uv) {
+  return SurfaceMaterial(int(gm.color.a), gm.color.rgb * color_tex.rgb,
+                         gm.params.x * texture_lookup(gm.layers.z, uv).r, gm.params.y);
+}
+
+// What a ray passes straight through at a surface, on average: the uncovered fraction, and of
+// the covered one what smooth thin glass transmits (it does not bend rays). The path tracer
+// makes the same choices at random, so shadow rays and BSDF paths agree in expectation.
+vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float coverage, float cos_theta) {
+  vec3 t = vec3(1.0 - coverage);
+  SurfaceMaterial m = surface_material(gm, color_tex, uv);
+  if (m.type == MATERIAL_TRANSPARENT && is_delta_material(m)) {
+    t += coverage * (1.0 - fresnel_schlick(dielectric_f0(m.ior), cos_theta)) * m.color;
+  }
+  return t;
+}
+
+// The solid-angle pdf with which next-event estimation at p picks the point y of light i.
+float light_pdf(int i, vec3 p, vec3 y) {
+  GpuLight l = lights[i];
+  float shape_pdf;
+  if (l.shape.x == 0) {
+    vec4 s = spheres[l.shape.y].center_radius;
+    shape_pdf = sphere_light_pdf(p, s.xyz, s.w, y);
+  } else {
+    GpuQuad q = quads[l.shape.y];
+    shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
+  }
+  return (1.0 - u_env_select) * l.select.x * shape_pdf;
+}
+
+// The light whose cdf interval holds u (binary search: scenes may hold many emitters).
+int pick_light(float u) {
+  int lo = 0;
+  int hi = u_light_count - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (u < lights[mid].select.y) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+// Radiance reaching `origin` along wi from light `target` (-1: the environment), through
+// cut-outs and smooth thin glass; 0 when anything else blocks it.
+vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
+  Ray ray = Ray(origin, wi);
+  vec3 transmittance = vec3(1.0);
+  for (int passes = 0; passes <= MAX_PASS_THROUGH; ++passes) {
+    SceneHit hit = intersect_scene(ray);
+    if (hit.material < 0) return target < 0 ? transmittance * environment(wi) : vec3(0.0);
+    GpuMaterial gm = materials[hit.material];
+    vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
+    float coverage = gm.params.z * color_tex.a;
+    if (target >= 0 && hit.light == target) {
+      return transmittance * coverage * material_emission(gm, hit.uv);
+    }
+    vec3 n = dot(hit.normal, wi) <= 0.0 ? hit.normal : -hit.normal;  // towards the ray's origin
+    transmittance *= straight_transmittance(gm, color_tex, hit.uv, coverage, dot(n, -wi));
+    if (max_component(transmittance) <= 0.0) break;
+    ray.origin = offset_surface_point(hit.position, -n, hit.error_scale);
+  }
+  return vec3(0.0);
+}
+
+// A light sample seen from `origin`: the point the shadow ray actually starts from.
+LightSample sample_light(int i, vec3 origin, vec2 u) {
+  GpuLight l = lights[i];
+  if (l.shape.x == 0) {
+    vec4 s = spheres[l.shape.y].center_radius;
+    return sample_sphere_light(origin, s.xyz, s.w, u);
+  }
+  GpuQuad q = quads[l.shape.y];
+  return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+}
+
+// One light sample at a non-delta vertex, weighted against BSDF sampling (power heuristic;
+// Veach 1997, ch. 9). Returns f |cos| Li w / pdf. The light is sampled from the offset origin
+// of the shadow ray, not from p: on shapes far from the origin the offset is large (16 float
+// epsilons of 1e5 is 0.19), and a direction chosen from p but traced from the offset point
+// would miss the edges of the light it aimed at (biased). BSDF rays record the same origin
+// (last_p in trace_path), so both strategies see the light from the same point.
+vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale) {
+  float u_pick = rand();
+  vec2 u = rand2();
+  vec3 above = offset_surface_point(p, n, error_scale);
+  vec3 wi;
+  float pdf;
+  int target;
+  vec3 origin = above;
+  if (u_pick < u_env_select) {
+    EnvironmentSample es = sample_environment_map(u);
+    if (!(es.pdf > 0.0)) return vec3(0.0);
+    wi = es.wi;
+    pdf = u_env_select * es.pdf;
+    target = -1;
+    if (dot(wi, n) <= 0.0) origin = offset_surface_point(p, -n, error_scale);
+  } else {
+    target = pick_light((u_pick - u_env_select) / (1.0 - u_env_select));
+    LightSample ls = sample_light(target, above, u);
+    if (m.type == MATERIAL_TRANSPARENT && ls.valid && dot(ls.wi, n) <= 0.0) {
+      // Rough thin glass also transmits: the light is below, seen from below.
+      origin = offset_surface_point(p, -n, error_scale);
+      ls = sample_light(target, origin, u);
+      if (dot(ls.wi, n) >= 0.0) return vec3(0.0);
+    }
+    if (!ls.valid) return vec3(0.0);
+    wi = ls.wi;
+    pdf = (1.0 - u_env_select) * lights[target].select.x * ls.pdf;
+  }
+  vec3 f = eval_bsdf(m, n, wo, wi);
+  if (max_component(f) <= 0.0) return vec3(0.0);
+  vec3 li = shadow_ray(origin, wi, target);
+  if (max_component(li) <= 0.0) return vec3(0.0);
+  return f * li * (power_heuristic(pdf, pdf_bsdf(m, n, wo, wi)) / pdf);
+}
 
 vec3 trace_path(Ray ray) {
   vec3 radiance = vec3(0.0);
   vec3 throughput = vec3(1.0);
   int bounces = 0;
   int passes = 0;
+  bool light_sampling = u_light_count > 0 || u_env_select > 0.0;
+  // The last scattering vertex: where next-event estimation would have sampled the light that
+  // a BSDF-sampled ray finds, for the MIS weight. Camera rays and delta lobes get weight 1.
+  vec3 last_p = ray.origin;
+  float last_pdf = 0.0;
+  bool last_delta = true;
   for (;;) {
     SceneHit hit = intersect_scene(ray);
     if (hit.material < 0) {
-      radiance += throughput * environment(ray.direction);
+      float w = 1.0;
+      if (!last_delta && u_env_select > 0.0) {
+        w = power_heuristic(last_pdf, u_env_select * environment_map_pdf(ray.direction));
+      }
+      radiance += throughput * environment(ray.direction) * w;
       break;
     }
     GpuMaterial gm = materials[hit.material];
@@ -158,19 +329,40 @@ vec3 trace_path(Ray ray) {
       ++passes;
       continue;
     }
-    radiance += throughput * gm.emission.rgb * texture_lookup(gm.layers.y, hit.uv).rgb;
+    // Emission found by BSDF sampling, weighted against next-event estimation of the same
+    // light from last_p. Shapes that are not lights (no estimated power) keep weight 1.
+    float w = 1.0;
+    if (hit.light >= 0 && !last_delta && u_light_count > 0) {
+      w = power_heuristic(last_pdf, light_pdf(hit.light, last_p, p));
+    }
+    radiance += throughput * material_emission(gm, hit.uv) * w;
     if (bounces >= u_max_bounces) break;
-    SurfaceMaterial m = SurfaceMaterial(int(gm.color.a), gm.color.rgb * color_tex.rgb,
-                                        gm.params.x * texture_lookup(gm.layers.z, hit.uv).r,
-                                        gm.params.y);
+    SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
+    bool delta = is_delta_material(m);
+    if (light_sampling && !delta) {
+      radiance += throughput * direct_light(m, p, n, wo, hit.error_scale);
+    }
     float u_lobe = rand();
-    vec2 u = vec2(rand(), rand());
+    vec2 u = rand2();
     BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
     if (!s.valid) break;
     throughput *= s.weight;
     if (max_component(throughput) <= 0.0) break;
+    // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it
+    // finds is the one next-event estimation at last_p aimed at, along the same direction.
     ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
+    if (!(s.delta && dot(s.wi, n) < 0.0)) {
+      last_p = ray.origin;
+      last_pdf = s.pdf;
+      last_delta = s.delta;
+    }
     ++bounces;
+    if (u_russian_roulette && bounces >= ROULETTE_START) {
+      // Survive with probability max(throughput) (at most 1); survivors carry 1/q more.
+      float q = min(1.0, max_component(throughput));
+      if (rand() >= q) break;
+      throughput /= q;
+    }
   }
   return radiance;
 }
@@ -188,14 +380,20 @@ void main() {
   // subtracting k * mean rounds both terms at the size of k * mean, and that error, divided by
   // n each pass, drifted a constant by 1e-5 (relative) over 1000 passes of 1000 samples
   // (hard_Accumulation.MillionSamplesOfAConstantDoNotDrift).
+  g_pixel_seed = sobol_pixel_seed(uint(pixel.x), row, u_seed);
   vec3 deviation_sum = vec3(0.0);
   int finite_count = 0;
   for (int s = 0; s < u_samples_per_pass; ++s) {
     g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
-    vec2 jitter = vec2(rand(), rand());
+    g_sample_index = u_samples_before + uint(s);
+    g_dimension = 0u;
+    vec2 jitter = rand2();
     vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);
-    vec2 lens = vec2(rand(), rand());
+    vec2 lens = rand2();
     vec3 l = trace_path(camera_ray(cam, film, lens));
+    // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
+    float lum = luminance(l);
+    if (u_clamp > 0.0 && lum > u_clamp) l *= u_clamp / lum;
     if (is_finite(l)) {
       deviation_sum += l - previous.rgb;
       ++finite_count;

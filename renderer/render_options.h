@@ -1,0 +1,19 @@
+// How the renderer estimates an image, as opposed to what the scene is: these are not saved in
+// projects. The defaults are unbiased and the fastest to converge; the switches exist so that
+// the bench can measure each technique (bench/RESULTS.md) and users can trade bias for noise.
+#pragma once
+
+namespace glint {
+
+enum class SamplerKind { pcg, sobol };
+
+struct RenderOptions {
+  bool light_sampling = true;        // next-event estimation + MIS for emitting spheres and quads
+  bool environment_sampling = true;  // ... and for an environment map (importance-sampled)
+  bool russian_roulette = true;      // unbiased path termination after a few bounces
+  SamplerKind sampler = SamplerKind::pcg;
+  float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
+  bool operator==(const RenderOptions&) const = default;
+};
+
+}  // namespace glint
