@@ -28,7 +28,7 @@ namespace {
 
 const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
-    "                    [--width W] [--height H] [--seed S]\n"
+    "                    [--width W] [--height H] [--seed S] [--generic-shader]\n"
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
     "                    [--no-roulette] [--clamp L]\n"
@@ -41,6 +41,8 @@ const char* const kUsage =
     "  --width W          image width (default: the project's film; with only one of\n"
     "  --height H         width or height given, the other keeps the film's aspect)\n"
     "  --seed S           sample sequence (default: the project's render.seed)\n"
+    "  --generic-shader   trace with the program that has every feature compiled in, not\n"
+    "                     the one specialised to the scene (same image; for measuring)\n"
     "  --reference REF    linear .exr or .hdr image of the same size to measure the error\n"
     "                     against (give it with --log)\n"
     "  --log OUT.csv      convergence log against --reference: one row at 1, 2, 4, 8, ...\n"
@@ -73,6 +75,7 @@ struct Options {
   std::string reference;  // with `log`: write a convergence log against this image
   std::string log;
   RenderOptions estimator;
+  bool generic_shader = false;
 };
 
 struct UsageError {
@@ -127,6 +130,7 @@ Options parse(int argc, char** argv) {
         throw UsageError{"--clamp expects a positive luminance, got '" + v + "'"};
       o.estimator.clamp = static_cast<float>(c);
     }
+    else if (a == "--generic-shader") o.generic_shader = true;
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
     else if (o.project.empty()) o.project = a;
     else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
@@ -239,11 +243,14 @@ int run_render_command(int argc, char** argv) {
     auto context = HeadlessGLContext::create();
     std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
                  gl_renderer_name().c_str(), context->platform().c_str());
-    GpuRenderer renderer;
+    GpuRendererOptions renderer_options;
+    renderer_options.force_generic_shader = o.generic_shader;
+    GpuRenderer renderer(renderer_options);
     renderer.set_options(o.estimator);
     if (o.estimator.clamp > 0)
       std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
     renderer.sync(scene, width, height);
+    renderer.prepare_specialised_program();
 
     const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);
     const bool interactive = isatty(STDERR_FILENO);
@@ -291,6 +298,13 @@ int run_render_command(int argc, char** argv) {
     }
     double total = clock.seconds();
     if (interactive) std::fputc('\n', stderr);
+    {
+      std::string defines = renderer.last_pass_defines();
+      for (char& c : defines) c = c == '\n' ? ' ' : c;
+      std::fprintf(stderr, "glint: last pass traced with the %s program%s%s\n",
+                   renderer.last_pass_generic() ? "generic" : "specialised",
+                   defines.empty() ? "" : ": ", defines.c_str());
+    }
 
     save_render(renderer, o.output);
     double pixel_samples = double(renderer.sample_count()) * width * height;

@@ -8,55 +8,100 @@
 namespace glint {
 namespace {
 
-GLuint compile(GLenum stage, const std::string& name) {
-  std::string text = shader_source(name);
+// GL_COMPLETION_STATUS_KHR (== _ARB); spelled out in case the headers lack it.
+constexpr GLenum kCompletionStatus = 0x91B1;
+
+GLuint issue_compile(GLenum stage, const std::string& name, const std::string& defines) {
+  std::string text = shader_source(name, defines);
   const char* src = text.c_str();
   GLuint shader = glCreateShader(stage);
   glShaderSource(shader, 1, &src, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<size_t>(length) + 1);
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
-    throw std::runtime_error("shaders/" + name + " failed to compile:\n" + log.data());
-  }
   return shader;
+}
+
+std::string shader_log(GLuint shader) {
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::vector<char> log(static_cast<size_t>(length) + 1);
+  glGetShaderInfoLog(shader, length, nullptr, log.data());
+  return log.data();
 }
 
 }  // namespace
 
-GlProgram::GlProgram(const std::string& vertex_name, const std::string& fragment_name) {
-  GLuint vs = compile(GL_VERTEX_SHADER, vertex_name);
-  GLuint fs = 0;
-  try {
-    fs = compile(GL_FRAGMENT_SHADER, fragment_name);
-  } catch (...) {
-    glDeleteShader(vs);
-    throw;
-  }
-  id_ = glCreateProgram();
-  glAttachShader(id_, vs);
-  glAttachShader(id_, fs);
-  glLinkProgram(id_);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<size_t>(length) + 1);
-    glGetProgramInfoLog(id_, length, nullptr, log.data());
-    glDeleteProgram(id_);
-    throw std::runtime_error(vertex_name + " + " + fragment_name + " failed to link:\n" + log.data());
-  }
+bool has_parallel_shader_compile() {
+  return epoxy_has_gl_extension("GL_KHR_parallel_shader_compile") ||
+         epoxy_has_gl_extension("GL_ARB_parallel_shader_compile");
 }
 
-GlProgram::~GlProgram() { glDeleteProgram(id_); }
+GlProgram::GlProgram(Deferred, const std::string& vertex_name, const std::string& fragment_name,
+                     const std::string& defines)
+    : names_{vertex_name, fragment_name} {
+  shaders_[0] = issue_compile(GL_VERTEX_SHADER, vertex_name, "");
+  shaders_[1] = issue_compile(GL_FRAGMENT_SHADER, fragment_name, defines);
+  id_ = glCreateProgram();
+  glAttachShader(id_, shaders_[0]);
+  glAttachShader(id_, shaders_[1]);
+  glLinkProgram(id_);
+}
+
+GlProgram::GlProgram(const std::string& vertex_name, const std::string& fragment_name,
+                     const std::string& defines)
+    : GlProgram(Deferred{}, vertex_name, fragment_name, defines) {
+  finish();
+}
+
+std::unique_ptr<GlProgram> GlProgram::start(const std::string& vertex_name,
+                                            const std::string& fragment_name,
+                                            const std::string& defines) {
+  return std::unique_ptr<GlProgram>(new GlProgram(Deferred{}, vertex_name, fragment_name, defines));
+}
+
+bool GlProgram::ready() const {
+  if (finished_ || !has_parallel_shader_compile()) return true;
+  GLint done = GL_FALSE;
+  glGetProgramiv(id_, kCompletionStatus, &done);
+  return done == GL_TRUE;
+}
+
+void GlProgram::finish() {
+  if (finished_) return;
+  std::string error;
+  for (int i = 0; i < 2 && error.empty(); ++i) {
+    GLint ok = 0;
+    glGetShaderiv(shaders_[i], GL_COMPILE_STATUS, &ok);
+    if (!ok) error = "shaders/" + names_[i] + " failed to compile:\n" + shader_log(shaders_[i]);
+  }
+  if (error.empty()) {
+    GLint ok = 0;
+    glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+    if (!ok) {
+      GLint length = 0;
+      glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
+      std::vector<char> log(static_cast<size_t>(length) + 1);
+      glGetProgramInfoLog(id_, length, nullptr, log.data());
+      error = names_[0] + " + " + names_[1] + " failed to link:\n" + log.data();
+    }
+  }
+  for (GLuint& s : shaders_) {
+    glDetachShader(id_, s);
+    glDeleteShader(s);
+    s = 0;
+  }
+  if (!error.empty()) {
+    glDeleteProgram(id_);
+    id_ = 0;
+    throw std::runtime_error(error);
+  }
+  finished_ = true;
+}
+
+GlProgram::~GlProgram() {
+  for (GLuint s : shaders_)
+    if (s) glDeleteShader(s);
+  if (id_) glDeleteProgram(id_);
+}
 
 GLint GlProgram::location(const char* name) {
   auto it = locations_.find(name);

@@ -42,7 +42,7 @@ GLuint make_framebuffer(GLuint texture) {
 
 }  // namespace
 
-GpuRenderer::GpuRenderer() {
+GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options) {
   trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
@@ -96,6 +96,11 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     upload_geometry(packed);
     origin_ = origin;
   }
+  // Features: the texture alpha probe only when what it depends on changed; the lens is cheap.
+  if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
+      d.environment != digests_.environment)
+    features_ = scene_features(scene);
+  features_.thin_lens = scene.camera.aperture_radius > 0;
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;
@@ -131,8 +136,8 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_storage(buffers_[2], packed.materials);
   upload_storage(buffers_[4], packed.lights);
   light_count_ = static_cast<int>(packed.lights.size());
-  trace_program_->set("u_sphere_count", static_cast<int>(packed.spheres.size()));
-  trace_program_->set("u_quad_count", static_cast<int>(packed.quads.size()));
+  uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
+  uniforms_.quad_count = static_cast<int>(packed.quads.size());
 }
 
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
@@ -181,35 +186,122 @@ void GpuRenderer::upload_environment(const Scene& scene) {
 }
 
 void GpuRenderer::set_frame_uniforms(const Scene& scene) {
-  GlProgram& p = *trace_program_;
+  TraceUniforms& u = uniforms_;
   const Environment& env = scene.environment;
   bool textured = !env.texture.empty();
-  p.set("u_env_color", textured ? glm::vec3(env.intensity) : env.color * env.intensity);
-  p.set("u_env_textured", textured ? 1 : 0);
-  p.set("u_env_rotation", glm::radians(env.rotation_deg));
-  p.set("u_max_bounces", scene.render.max_bounces);
-  p.set("u_light_count", options_.light_sampling ? light_count_ : 0);
-  p.set("u_env_select", 0.0f);
-  p.set("u_russian_roulette", options_.russian_roulette ? 1 : 0);
-  p.set("u_clamp", options_.clamp);
-  p.set("u_sobol", options_.sampler == SamplerKind::sobol ? 1 : 0);
-  p.set("u_seed", static_cast<unsigned>(scene.render.seed));
+  u.env_color = textured ? glm::vec3(env.intensity) : env.color * env.intensity;
+  u.env_textured = textured ? 1 : 0;
+  u.env_rotation = glm::radians(env.rotation_deg);
+  u.max_bounces = scene.render.max_bounces;
+  u.light_count = options_.light_sampling ? light_count_ : 0;
+  u.env_select = 0.0f;
+  u.russian_roulette = options_.russian_roulette ? 1 : 0;
+  u.clamp = options_.clamp;
+  u.sobol = options_.sampler == SamplerKind::sobol ? 1 : 0;
+  u.seed = static_cast<unsigned>(scene.render.seed);
   float aspect = height_ > 0 ? static_cast<float>(width_) / static_cast<float>(height_) : 1.0f;
   gpu::CameraFrame cam = make_camera_frame(scene.camera, aspect);
-  p.set("u_cam_origin", glm::vec3(glm::dvec3(scene.camera.position) - origin_));
-  p.set("u_cam_right", cam.right);
-  p.set("u_cam_up", cam.up);
-  p.set("u_cam_forward", cam.forward);
-  p.set("u_cam_tan_half_vfov", cam.tan_half_vfov);
-  p.set("u_cam_aspect", cam.aspect);
-  p.set("u_cam_aperture", cam.aperture);
-  p.set("u_cam_focus", cam.focus);
+  u.cam_origin = glm::vec3(glm::dvec3(scene.camera.position) - origin_);
+  u.cam_right = cam.right;
+  u.cam_up = cam.up;
+  u.cam_forward = cam.forward;
+  u.cam_tan_half_vfov = cam.tan_half_vfov;
+  u.cam_aspect = cam.aspect;
+  u.cam_aperture = cam.aperture;
+  u.cam_focus = cam.focus;
+}
+
+// Every pass: the programs do not share uniform state, and a pass may use a different one than
+// the last. A score of glProgramUniform calls is nothing next to a trace pass.
+void GpuRenderer::apply_trace_uniforms(GlProgram& p) {
+  const TraceUniforms& u = uniforms_;
+  p.set("u_env_color", u.env_color);
+  p.set("u_env_textured", u.env_textured);
+  p.set("u_env_rotation", u.env_rotation);
+  p.set("u_max_bounces", u.max_bounces);
+  p.set("u_light_count", u.light_count);
+  p.set("u_env_select", u.env_select);
+  p.set("u_russian_roulette", u.russian_roulette);
+  p.set("u_clamp", u.clamp);
+  p.set("u_sobol", u.sobol);
+  p.set("u_seed", u.seed);
+  p.set("u_sphere_count", u.sphere_count);
+  p.set("u_quad_count", u.quad_count);
+  p.set("u_cam_origin", u.cam_origin);
+  p.set("u_cam_right", u.cam_right);
+  p.set("u_cam_up", u.cam_up);
+  p.set("u_cam_forward", u.cam_forward);
+  p.set("u_cam_tan_half_vfov", u.cam_tan_half_vfov);
+  p.set("u_cam_aspect", u.cam_aspect);
+  p.set("u_cam_aperture", u.cam_aperture);
+  p.set("u_cam_focus", u.cam_focus);
+}
+
+// The exact variant for the scene's features if it is ready, else a ready one that covers
+// them (e.g. the previous scene's after a feature was removed), else the generic program.
+// Never waits for a compile.
+GlProgram& GpuRenderer::choose_trace_program() {
+  last_pass_defines_.clear();
+  if (renderer_options_.force_generic_shader) return *trace_program_;
+  const std::string wanted = shader_defines(features_);
+  if (wanted.empty()) return *trace_program_;
+  auto best = variants_.end();
+  for (auto it = variants_.begin(); it != variants_.end(); ++it) {
+    if (!it->ready && !it->failed && it->program->ready()) {
+      try {
+        it->program->finish();
+        it->ready = true;
+      } catch (const std::exception&) {
+        // Kept, so that it is not compiled again; the generic program renders this scene.
+        it->failed = true;
+      }
+    }
+    if (!it->ready || it->failed || !covers(it->features, features_)) continue;
+    if (it->defines == wanted) {
+      best = it;
+      break;
+    }
+    if (best == variants_.end()) best = it;
+  }
+  if (best == variants_.end()) return *trace_program_;
+  variants_.splice(variants_.begin(), variants_, best);  // most recently used
+  last_pass_defines_ = best->defines;
+  return *best->program;
+}
+
+void GpuRenderer::prepare_specialised_program() {
+  start_variant_if_missing();
+  for (Variant& v : variants_)
+    if (v.defines == shader_defines(features_) && !v.ready && !v.failed) {
+      try {
+        v.program->finish();
+        v.ready = true;
+      } catch (const std::exception&) {
+        v.failed = true;
+      }
+    }
+}
+
+void GpuRenderer::start_variant_if_missing() {
+  if (renderer_options_.force_generic_shader) return;
+  std::string wanted = shader_defines(features_);
+  if (wanted.empty()) return;
+  for (const Variant& v : variants_)
+    if (v.defines == wanted) return;
+  // Evict the least recently used; a compile still running is evicted like any other.
+  if (variants_.size() >= kMaxVariants) variants_.pop_back();
+  Variant v;
+  v.features = features_;
+  v.defines = wanted;
+  v.program = GlProgram::start("fullscreen.vert", "trace.frag", wanted);
+  variants_.push_back(std::move(v));
 }
 
 void GpuRenderer::trace(int samples) {
   if (samples <= 0 || width_ <= 0) return;
   int next = 1 - current_;
-  GlProgram& p = *trace_program_;
+  GlProgram& p = choose_trace_program();
+  apply_trace_uniforms(p);
   p.set("u_resolution", glm::ivec2(width_, height_));
   p.set("u_samples_before", static_cast<unsigned>(samples_));
   p.set("u_samples_per_pass", samples);
@@ -237,6 +329,9 @@ void GpuRenderer::trace(int samples) {
   current_ = next;
   samples_ += samples;
   display_stale_ = true;
+  // After the pass, so that a driver without parallel compilation (Mesa's llvmpipe links in
+  // glLinkProgram) at least has this pass queued first.
+  if (last_pass_generic()) start_variant_if_missing();
 }
 
 // Adds the passes whose timestamps are in (all of them when `wait`) to trace_gpu_seconds_.

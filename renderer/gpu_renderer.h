@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <list>
 #include <memory>
 #include <string>
 
@@ -17,6 +18,7 @@
 #include "renderer/render_options.h"
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
+#include "renderer/shader_features.h"
 
 namespace glint {
 
@@ -27,9 +29,17 @@ struct SyncResult {
   bool display_changed = false;     // exposure or tonemap changed (no reset on its own)
 };
 
+struct GpuRendererOptions {
+  // Always trace with the generic program (every feature compiled in): for measurements.
+  bool force_generic_shader = false;
+};
+
 class GpuRenderer {
  public:
-  GpuRenderer();  // compiles the shaders; throws std::runtime_error with the driver's log
+  // Compiles the generic trace program and the tonemap program; throws std::runtime_error
+  // with the driver's log. Programs specialised to a scene's ShaderFeatures are compiled
+  // later, when a scene needs them (see trace()).
+  explicit GpuRenderer(GpuRendererOptions options = {});
   ~GpuRenderer();
   GpuRenderer(const GpuRenderer&) = delete;
   GpuRenderer& operator=(const GpuRenderer&) = delete;
@@ -42,8 +52,23 @@ class GpuRenderer {
   void set_options(const RenderOptions& options) { options_ = options; }
   const RenderOptions& options() const { return options_; }
 
-  // Adds `samples` samples to every pixel in one pass.
+  // Adds `samples` samples to every pixel in one pass, with the specialised program for the
+  // scene's features if it is compiled, otherwise with the generic one. A pass that finds no
+  // program for the current features issues its compile after the pass (non-blocking where
+  // the driver compiles in parallel); later passes switch to it once GL_COMPLETION_STATUS
+  // says it is ready. Both programs draw the same random numbers and give the same image.
   void trace(int samples);
+
+  // For batch renders (`glint render`): compiles the program specialised to the synced scene
+  // now, waiting for it, so that no pass (and no driver JIT) is spent on the generic one.
+  // Does nothing with force_generic_shader or when the scene needs every feature.
+  void prepare_specialised_program();
+
+  // What the synced scene needs, and the defines of the program that ran the last trace pass
+  // ("" for the generic program; shader_defines(features()) once specialised).
+  const ShaderFeatures& features() const { return features_; }
+  const std::string& last_pass_defines() const { return last_pass_defines_; }
+  bool last_pass_generic() const { return last_pass_defines_.empty(); }
 
   // Re-runs the tonemap pass if the accumulation or the display settings changed since the
   // last run. Never touches the accumulation.
@@ -68,9 +93,43 @@ class GpuRenderer {
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
+  void apply_trace_uniforms(GlProgram& p);
+  GlProgram& choose_trace_program();
+  void start_variant_if_missing();
   void collect_trace_timers(bool wait);
 
-  std::unique_ptr<GlProgram> trace_program_;
+  // A specialised trace program, compiled or still compiling.
+  struct Variant {
+    ShaderFeatures features;
+    std::string defines;  // the cache key
+    std::unique_ptr<GlProgram> program;
+    bool ready = false;
+    bool failed = false;  // compile or link error: the generic program is used instead
+  };
+  static constexpr size_t kMaxVariants = 4;
+
+  GpuRendererOptions renderer_options_;
+  std::unique_ptr<GlProgram> trace_program_;  // the generic one
+  std::list<Variant> variants_;               // most recently used first (LRU)
+  ShaderFeatures features_;
+  std::string last_pass_defines_;
+  // Uniforms of the trace pass, applied to whichever program runs it.
+  struct TraceUniforms {
+    glm::vec3 env_color{0};
+    int env_textured = 0;
+    float env_rotation = 0;
+    int max_bounces = 0;
+    int light_count = 0;
+    float env_select = 0;
+    int russian_roulette = 0;
+    float clamp = 0;
+    int sobol = 0;
+    unsigned seed = 0;
+    int sphere_count = 0;
+    int quad_count = 0;
+    glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};
+    float cam_tan_half_vfov = 0, cam_aspect = 1, cam_aperture = 0, cam_focus = 1;
+  } uniforms_;
   std::unique_ptr<GlProgram> tonemap_program_;
   GLuint vao_ = 0;
   GLuint accumulation_[2] = {0, 0};

@@ -35,4 +35,13 @@ std::string shader_source(const std::string& name) {
   return out;
 }
 
+std::string shader_source(const std::string& name, const std::string& defines) {
+  std::string text = shader_source(name);
+  if (defines.empty()) return text;
+  if (text.rfind("#version", 0) != 0)
+    throw std::runtime_error("shaders/" + name + " does not start with #version");
+  size_t eol = text.find('\n');
+  return text.insert(eol == std::string::npos ? text.size() : eol + 1, defines);
+}
+
 }  // namespace glint

@@ -14,4 +14,7 @@ const std::map<std::string, std::string>& embedded_shaders();
 // Throws std::runtime_error naming the missing file.
 std::string shader_source(const std::string& name);
 
+// The same with `defines` (whole lines) inserted after the first line, which must be #version.
+std::string shader_source(const std::string& name, const std::string& defines);
+
 }  // namespace glint

@@ -1,4 +1,6 @@
 #version 450 core
+// (renderer/shader_features.cpp inserts `#define GLINT_NO_...` lines here for what the scene
+// lacks; none defined is the generic program.)
 // Path tracing pass: adds u_samples_per_pass samples to every pixel's running mean.
 // Accumulation texel: rgb = mean of the finite samples so far, a = count of non-finite
 // samples discarded. The pass reads the previous accumulation and writes the next one
@@ -96,6 +98,9 @@ vec2 rand2() {
 }
 
 vec4 texture_lookup(int layer, vec2 uv) {
+#if defined(GLINT_NO_TEXTURES)
+  return vec4(1.0);  // no used material has a texture: every layer is -1
+#else
   if (layer < 0) return vec4(1.0);
   BilinearTaps taps = bilinear_taps(uv, layer_sizes[layer].xy);
   vec4 a = texelFetch(u_textures, ivec3(taps.texels.x, taps.texels.y, layer), 0);
@@ -103,11 +108,14 @@ vec4 texture_lookup(int layer, vec2 uv) {
   vec4 c = texelFetch(u_textures, ivec3(taps.texels.x, taps.texels.w, layer), 0);
   vec4 d = texelFetch(u_textures, ivec3(taps.texels.z, taps.texels.w, layer), 0);
   return mix(mix(a, b, taps.weight.x), mix(c, d, taps.weight.x), taps.weight.y);
+#endif
 }
 
 vec3 environment(vec3 d) {
-  if (!u_env_textured) return u_env_color;
-  return u_env_color * texture(u_environment, environment_uv(d, u_env_rotation)).rgb;
+#if !defined(GLINT_NO_ENV_TEXTURE)
+  if (u_env_textured) return u_env_color * texture(u_environment, environment_uv(d, u_env_rotation)).rgb;
+#endif
+  return u_env_color;
 }
 
 // Importance sampling of the environment map (placeholder until the distribution lands).
@@ -322,6 +330,7 @@ vec3 trace_path(Ray ray) {
     vec3 wo = -ray.direction;
     vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;
     vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
+#if !defined(GLINT_NO_COVERAGE)  // without it coverage is 1: no test, and no rand() either
     float coverage = gm.params.z * color_tex.a;
     if (coverage < 1.0 && passes < MAX_PASS_THROUGH && rand() >= coverage) {
       // Not a bounce: the ray continues unchanged past the surface.
@@ -329,6 +338,8 @@ vec3 trace_path(Ray ray) {
       ++passes;
       continue;
     }
+#endif
+#if !defined(GLINT_NO_EMITTERS)
     // Emission found by BSDF sampling, weighted against next-event estimation of the same
     // light from last_p. Shapes that are not lights (no estimated power) keep weight 1.
     float w = 1.0;
@@ -336,6 +347,7 @@ vec3 trace_path(Ray ray) {
       w = power_heuristic(last_pdf, light_pdf(hit.light, last_p, p));
     }
     radiance += throughput * material_emission(gm, hit.uv) * w;
+#endif
     if (bounces >= u_max_bounces) break;
     SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
     bool delta = is_delta_material(m);

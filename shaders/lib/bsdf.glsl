@@ -63,18 +63,30 @@ vec3 sample_microfacet_normal(float alpha, mat3 frame, vec3 wo, vec2 u) {
   return frame * sample_ggx_visible_normal(alpha, wo_local, u);
 }
 
+// Material types that no primitive uses are compiled out of the trace shader with
+// GLINT_NO_MATTE, GLINT_NO_REFLECTIVE, GLINT_NO_GLOSSY and GLINT_NO_TRANSPARENT
+// (renderer/shader_features.h); with none defined (the C++ build) every branch is kept.
+#if !defined(GLINT_NO_REFLECTIVE) || !defined(GLINT_NO_GLOSSY) || !defined(GLINT_NO_TRANSPARENT)
+#define GLINT_HAS_MICROFACETS
+#endif
+
 vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
   if (is_delta_material(m)) return vec3(0.0f);
   float cos_i = dot(n, wi);
   float cos_o = dot(n, wo);
+#if !defined(GLINT_NO_MATTE)
   if (m.type == MATERIAL_MATTE) return cos_i > 0.0f ? m.color * (cos_i * INV_PI) : vec3(0.0f);
+#endif
   float alpha = ggx_alpha(m);
+#if !defined(GLINT_NO_REFLECTIVE)
   if (m.type == MATERIAL_REFLECTIVE) {
     if (cos_i <= 0.0f) return vec3(0.0f);
     vec3 h = normalize(wo + wi);
     return fresnel_schlick(m.color, dot(h, wi)) * microfacet_reflection(alpha, n, h, wo, wi);
   }
+#endif
   float f0 = dielectric_f0(m.ior);
+#if !defined(GLINT_NO_GLOSSY)
   if (m.type == MATERIAL_GLOSSY) {
     if (cos_i <= 0.0f) return vec3(0.0f);
     vec3 h = normalize(wo + wi);
@@ -82,6 +94,8 @@ vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
     vec3 base = m.color * ((1.0f - fresnel_schlick(f0, cos_o)) * INV_PI * cos_i);
     return base + vec3(coat);
   }
+#endif
+#if !defined(GLINT_NO_TRANSPARENT)
   // Rough thin glass: reflection, or transmission mirrored through the surface plane.
   if (cos_i > 0.0f) {
     vec3 h = normalize(wo + wi);
@@ -90,54 +104,83 @@ vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
   vec3 wr = mirror_through_plane(wi, n);
   vec3 h = normalize(wo + wr);
   return m.color * ((1.0f - fresnel_schlick(f0, dot(h, wo))) * microfacet_reflection(alpha, n, h, wo, wr));
+#else
+  return vec3(0.0f);
+#endif
 }
 
 float pdf_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
   if (is_delta_material(m)) return 0.0f;
   float cos_i = dot(n, wi);
+#if !defined(GLINT_NO_MATTE)
   if (m.type == MATERIAL_MATTE) return cos_i > 0.0f ? cos_i * INV_PI : 0.0f;
+#endif
   float alpha = ggx_alpha(m);
+#if !defined(GLINT_NO_REFLECTIVE)
   if (m.type == MATERIAL_REFLECTIVE) {
     return cos_i > 0.0f ? microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo) : 0.0f;
   }
+#endif
   float p_reflect = fresnel_schlick(dielectric_f0(m.ior), dot(n, wo));
+#if !defined(GLINT_NO_GLOSSY)
   if (m.type == MATERIAL_GLOSSY) {
     if (cos_i <= 0.0f) return 0.0f;
     return p_reflect * microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo) +
            (1.0f - p_reflect) * cos_i * INV_PI;
   }
+#endif
+#if !defined(GLINT_NO_TRANSPARENT)
   if (cos_i > 0.0f) return p_reflect * microfacet_reflection_pdf(alpha, n, normalize(wo + wi), wo);
   vec3 wr = mirror_through_plane(wi, n);
   return (1.0f - p_reflect) * microfacet_reflection_pdf(alpha, n, normalize(wo + wr), wo);
+#else
+  return 0.0f;
+#endif
 }
 
 // u_lobe picks a lobe, u drives the direction; both uniform in [0,1).
 BsdfSample sample_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, float u_lobe, vec2 u) {
   BsdfSample invalid = BsdfSample(vec3(0.0f), vec3(0.0f), 0.0f, false, false);
   float cos_o = dot(n, wo);
+#if !defined(GLINT_NO_REFLECTIVE)
   if (m.type == MATERIAL_REFLECTIVE && m.roughness < DELTA_ROUGHNESS) {
     return BsdfSample(reflect(-wo, n), fresnel_schlick(m.color, cos_o), 0.0f, true, true);
   }
+#endif
   float f0 = dielectric_f0(m.ior);
+#if !defined(GLINT_NO_TRANSPARENT)
   if (m.type == MATERIAL_TRANSPARENT && m.roughness < DELTA_ROUGHNESS) {
     // Choosing reflection with probability F makes both weights free of F.
     if (u_lobe < fresnel_schlick(f0, cos_o)) return BsdfSample(reflect(-wo, n), vec3(1.0f), 0.0f, true, true);
     return BsdfSample(-wo, m.color, 0.0f, true, true);
   }
+#endif
   mat3 frame = basis_from_normal(n);
+  // The cosine lobe: matte, or the base of glossy (chosen with probability 1 - F).
+  bool cosine_lobe = false;
+#if !defined(GLINT_NO_MATTE)
+  cosine_lobe = m.type == MATERIAL_MATTE;
+#endif
+#if !defined(GLINT_NO_GLOSSY)
+  cosine_lobe = cosine_lobe || (m.type == MATERIAL_GLOSSY && u_lobe >= fresnel_schlick(f0, cos_o));
+#endif
   vec3 wi;
-  if (m.type == MATERIAL_MATTE) {
-    wi = frame * sample_cosine_hemisphere(u);
-  } else if (m.type == MATERIAL_GLOSSY && u_lobe >= fresnel_schlick(f0, cos_o)) {
+#if !defined(GLINT_HAS_MICROFACETS)
+  wi = frame * sample_cosine_hemisphere(u);
+#else
+  if (cosine_lobe) {
     wi = frame * sample_cosine_hemisphere(u);
   } else {
     vec3 h = sample_microfacet_normal(ggx_alpha(m), frame, wo, u);
     wi = reflect(-wo, h);
     if (dot(n, wi) <= 0.0f) return invalid;
+#if !defined(GLINT_NO_TRANSPARENT)
     if (m.type == MATERIAL_TRANSPARENT && u_lobe >= fresnel_schlick(f0, cos_o)) {
       wi = mirror_through_plane(wi, n);
     }
+#endif
   }
+#endif
   float pdf = pdf_bsdf(m, n, wo, wi);
   if (!(pdf > 0.0f)) return invalid;
   return BsdfSample(wi, eval_bsdf(m, n, wo, wi) / pdf, pdf, false, true);

@@ -19,11 +19,15 @@ Ray camera_ray(CameraFrame cam, vec2 film, vec2 lens_u) {
   float sx = (2.0f * film.x - 1.0f) * cam.tan_half_vfov * cam.aspect;
   float sy = (1.0f - 2.0f * film.y) * cam.tan_half_vfov;
   vec3 d = cam.forward + sx * cam.right + sy * cam.up;  // forward component exactly 1
-  if (cam.aperture <= 0.0f) return Ray(cam.origin, normalize(d));
-  vec3 focus_point = cam.origin + cam.focus * d;
-  vec2 lens = cam.aperture * sample_disk(lens_u);
-  vec3 o = cam.origin + lens.x * cam.right + lens.y * cam.up;
-  return Ray(o, normalize(focus_point - o));
+#if !defined(GLINT_NO_THIN_LENS)  // defined: a pinhole program (lens_u is drawn but unused)
+  if (cam.aperture > 0.0f) {
+    vec3 focus_point = cam.origin + cam.focus * d;
+    vec2 lens = cam.aperture * sample_disk(lens_u);
+    vec3 o = cam.origin + lens.x * cam.right + lens.y * cam.up;
+    return Ray(o, normalize(focus_point - o));
+  }
+#endif
+  return Ray(cam.origin, normalize(d));
 }
 
 #endif

@@ -1,0 +1,87 @@
+#include "renderer/shader_features.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "renderer/image.h"
+
+namespace glint {
+namespace {
+
+// Materials referenced by primitives; an unresolved name falls back to material 0 as in
+// pack_scene (validated scenes have none).
+std::vector<const Material*> used_materials(const Scene& scene) {
+  std::vector<bool> used(scene.materials.size(), false);
+  auto mark = [&](const std::string& name) {
+    if (scene.materials.empty()) return;
+    used[static_cast<size_t>(std::max(find_material(scene, name), 0))] = true;
+  };
+  for (const Sphere& s : scene.spheres) mark(s.material);
+  for (const Quad& q : scene.quads) mark(q.material);
+  std::vector<const Material*> out;
+  for (size_t i = 0; i < used.size(); ++i)
+    if (used[i]) out.push_back(&scene.materials[i]);
+  return out;
+}
+
+bool texture_has_alpha(const Scene& scene, const std::string& texture_name) {
+  int t = find_texture(scene, texture_name);
+  if (t < 0) return true;
+  try {
+    ImageInfo info = probe_image(resolve_asset_path(scene, scene.textures[static_cast<size_t>(t)].path));
+    return info.channels == 2 || info.channels >= 4;  // grey+alpha or RGBA
+  } catch (const ImageError&) {
+    return true;  // unknown: keep the coverage test
+  }
+}
+
+}  // namespace
+
+ShaderFeatures generic_features() { return ShaderFeatures{}; }
+
+ShaderFeatures scene_features(const Scene& scene) {
+  ShaderFeatures f;
+  f.has_emitters = f.has_textures = f.has_coverage = false;
+  f.material_types = 0;
+  for (const Material* m : used_materials(scene)) {
+    f.material_types |= 1u << static_cast<int>(m->type);
+    // Emission is emission * texture: with zero emission the texture adds nothing.
+    if (m->emission != glm::vec3(0)) f.has_emitters = true;
+    if (!m->color_texture.empty() || !m->roughness_texture.empty() ||
+        (!m->emission_texture.empty() && m->emission != glm::vec3(0)))
+      f.has_textures = true;
+    if (m->opacity < 1 || (!m->color_texture.empty() && texture_has_alpha(scene, m->color_texture)))
+      f.has_coverage = true;
+  }
+  f.env_textured = !scene.environment.texture.empty();
+  f.thin_lens = scene.camera.aperture_radius > 0;
+  return f;
+}
+
+bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
+  auto ok = [](bool have, bool need) { return have || !need; };
+  return ok(program.has_emitters, needed.has_emitters) &&
+         ok(program.has_textures, needed.has_textures) &&
+         ok(program.env_textured, needed.env_textured) && ok(program.thin_lens, needed.thin_lens) &&
+         ok(program.has_coverage, needed.has_coverage) &&
+         (needed.material_types & ~program.material_types) == 0;
+}
+
+std::string shader_defines(const ShaderFeatures& f) {
+  std::string out;
+  auto define = [&](bool present, const char* name) {
+    if (!present) out += std::string("#define ") + name + "\n";
+  };
+  define(f.has_emitters, "GLINT_NO_EMITTERS");
+  define(f.has_textures, "GLINT_NO_TEXTURES");
+  define(f.env_textured, "GLINT_NO_ENV_TEXTURE");
+  define(f.thin_lens, "GLINT_NO_THIN_LENS");
+  define(f.has_coverage, "GLINT_NO_COVERAGE");
+  define(f.uses(MaterialType::matte), "GLINT_NO_MATTE");
+  define(f.uses(MaterialType::reflective), "GLINT_NO_REFLECTIVE");
+  define(f.uses(MaterialType::glossy), "GLINT_NO_GLOSSY");
+  define(f.uses(MaterialType::transparent), "GLINT_NO_TRANSPARENT");
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,42 @@
+// Which parts of the trace shader a scene needs (issue 5, "model only what a scene needs").
+// Each feature that is absent becomes a `#define GLINT_NO_...` line after `#version` of
+// shaders/trace.frag; a macro that is not defined means the feature is present, so the C++
+// build of the shader library (renderer/shader_lib.h), which defines none, keeps every branch.
+// Only features whose removal makes the shader cheaper are listed; removing one never changes
+// the random-number sequence, so generic and specialised programs render the same image.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "renderer/scene.h"
+
+namespace glint {
+
+struct ShaderFeatures {
+  bool has_emitters = true;   // a used material has non-zero emission
+  bool has_textures = true;   // a used material references a texture (any slot)
+  bool env_textured = true;   // the environment is an image
+  bool thin_lens = true;      // aperture_radius > 0
+  bool has_coverage = true;   // a used material has opacity < 1 or a colour texture with alpha
+  uint32_t material_types = 0xF;  // bit (1 << int(MaterialType)) per type used by a primitive
+
+  bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
+  bool operator==(const ShaderFeatures&) const = default;
+};
+
+// Every feature present: the program compiled at start-up, right for any scene.
+ShaderFeatures generic_features();
+
+// What `scene` needs. "Used" means referenced by a sphere or a quad. A colour texture counts as
+// having alpha when its file has an alpha channel (header probe) or cannot be probed.
+ShaderFeatures scene_features(const Scene& scene);
+
+// True when a program compiled for `program` renders every scene that needs `needed`.
+bool covers(const ShaderFeatures& program, const ShaderFeatures& needed);
+
+// `#define GLINT_NO_...` lines (each ending in '\n') for the absent features; empty for
+// generic_features(). Also serves as the key of the program cache.
+std::string shader_defines(const ShaderFeatures& features);
+
+}  // namespace glint

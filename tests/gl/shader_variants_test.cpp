@@ -1,0 +1,162 @@
+// Programs specialised to a scene's ShaderFeatures (issue 5): the same image as the generic
+// program with the same seed, and the switch from generic to specialised without waiting.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "renderer/project_file.h"
+#include "tests/gl/gl_test_support.h"
+
+namespace glint {
+namespace {
+
+// Both programs run the same GLSL statements on the same random numbers: removed branches are
+// ones the scene never takes, and no removal skips a rand() call. What may still differ is the
+// compiler's instruction selection around the removed code (e.g. a multiply-add fused in one
+// program and not the other): float rounding at 1 ulp per operation, which the comparison allows
+// relative to the pixel (1e-4, i.e. ~800 ulp over a path of a few hundred operations).
+// A sample whose path such a rounding sends to another surface would exceed it; with 32x32
+// pixels and 4 spp none does here, so a failure means the programs really differ.
+constexpr double kRelativeTolerance = 1e-4;
+
+double max_relative_difference(const Image& a, const Image& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    double d = std::abs(double(a.pixels[i]) - b.pixels[i]);
+    worst = std::max(worst, d / std::max(1e-3, std::abs(double(b.pixels[i]))));
+  }
+  return worst;
+}
+
+Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised) {
+  GpuRendererOptions options;
+  options.force_generic_shader = generic;
+  GpuRenderer r(options);
+  r.sync(scene, w, h);
+  if (!generic) r.prepare_specialised_program();
+  bool specialised = true;
+  for (int i = 0; i < passes; ++i) {
+    r.trace(2);
+    specialised = specialised && !r.last_pass_generic();
+  }
+  if (all_specialised) *all_specialised = specialised;
+  return r.read_accumulation();
+}
+
+TEST(GlShaderVariants, EveryProjectRendersTheSameSpecialisedAndGeneric) {
+  test::ensure_gl_context();
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(GLINT_SOURCE_DIR "/projects")) {
+    if (entry.path().extension() != ".glint") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    Scene scene = load_project(entry.path());
+    scene.render.seed = 7;
+    const int w = 32, h = std::max(1, 32 * scene.film.height / scene.film.width);
+    bool specialised = false;
+    Image special = render(scene, w, h, false, 2, &specialised);
+    Image generic = render(scene, w, h, true, 2, nullptr);
+    EXPECT_EQ(specialised, shader_defines(scene_features(scene)) != "")
+        << "every pass should use the specialised program when the scene lacks a feature";
+    double diff = max_relative_difference(special, generic);
+    EXPECT_LE(diff, kRelativeTolerance);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", diff);
+    RecordProperty(entry.path().stem().string() + "_max_relative_difference", text);
+    ++count;
+  }
+  EXPECT_GE(count, 6);
+}
+
+// Traces single-sample passes until the specialised program runs (or 30 s pass); returns how
+// many passes used the generic one.
+int passes_until_specialised(GpuRenderer& r) {
+  auto start = std::chrono::steady_clock::now();
+  int generic_passes = 0;
+  for (;;) {
+    r.trace(1);
+    if (!r.last_pass_generic()) return generic_passes;
+    ++generic_passes;
+    if (std::chrono::steady_clock::now() - start > std::chrono::seconds(30)) return -1;
+  }
+}
+
+Scene cornell() {
+  Scene s = load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint");
+  s.render.seed = 3;
+  return s;
+}
+
+TEST(GlShaderVariants, SwitchesToTheSpecialisedProgramWhenItIsReady) {
+  test::ensure_gl_context();
+  Scene scene = cornell();
+  GpuRenderer r;
+  r.sync(scene, 16, 16);
+  int generic_passes = passes_until_specialised(r);
+  // The first pass never waits for a compile: it runs the generic program and issues the
+  // specialised compile afterwards.
+  EXPECT_GE(generic_passes, 1);
+  ASSERT_GT(generic_passes, 0) << "never switched";
+  EXPECT_EQ(r.last_pass_defines(), shader_defines(r.features()));
+  // Mixed passes, same image as the generic program alone.
+  r.trace(2);
+  GpuRendererOptions generic;
+  generic.force_generic_shader = true;
+  GpuRenderer g(generic);
+  g.sync(scene, 16, 16);
+  for (int64_t i = 0; i < r.sample_count() - 2; ++i) g.trace(1);
+  g.trace(2);
+  EXPECT_TRUE(g.last_pass_generic());
+  EXPECT_LE(max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance);
+}
+
+TEST(GlShaderVariants, StructuralEditFallsBackToGenericUntilItsVariantIsReady) {
+  test::ensure_gl_context();
+  Scene scene = cornell();
+  GpuRenderer r;
+  r.sync(scene, 16, 16);
+  ASSERT_GT(passes_until_specialised(r), 0);
+  const std::string before = r.last_pass_defines();
+  EXPECT_NE(before.find("GLINT_NO_TEXTURES"), std::string::npos);
+
+  // Structural edit: the white material gets a colour texture.
+  scene.textures.push_back({.name = "wood", .path = "assets/wood_color.png"});
+  scene.materials[0].color_texture = "wood";
+  ASSERT_TRUE(r.sync(scene, 16, 16).accumulation_reset);
+  EXPECT_TRUE(r.features().has_textures);
+  r.trace(1);
+  EXPECT_TRUE(r.last_pass_generic()) << "the old variant has no texture fetch";
+  GpuRendererOptions generic;
+  generic.force_generic_shader = true;
+  GpuRenderer g(generic);
+  g.sync(scene, 16, 16);
+  g.trace(1);
+  EXPECT_LE(max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance)
+      << "the image while the new variant compiles";
+  EXPECT_GE(passes_until_specialised(r), 0);
+  EXPECT_EQ(r.last_pass_defines().find("GLINT_NO_TEXTURES"), std::string::npos);
+
+  // Undoing the edit needs fewer features: the cached first variant is used at once.
+  scene.materials[0].color_texture.clear();
+  r.sync(scene, 16, 16);
+  r.trace(1);
+  EXPECT_EQ(r.last_pass_defines(), before);
+}
+
+TEST(GlShaderVariants, ForcedGenericNeverSpecialises) {
+  test::ensure_gl_context();
+  GpuRendererOptions options;
+  options.force_generic_shader = true;
+  GpuRenderer r(options);
+  r.sync(cornell(), 8, 8);
+  r.prepare_specialised_program();
+  for (int i = 0; i < 3; ++i) {
+    r.trace(1);
+    EXPECT_TRUE(r.last_pass_generic());
+  }
+}
+
+}  // namespace
+}  // namespace glint

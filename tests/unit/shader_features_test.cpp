@@ -1,0 +1,126 @@
+// ShaderFeatures of scenes: what a scene needs decides which `#define GLINT_NO_...` lines the
+// trace shader gets (renderer/shader_features.h).
+#include <gtest/gtest.h>
+
+#include "renderer/project_file.h"
+#include "renderer/shader_features.h"
+
+namespace glint {
+namespace {
+
+uint32_t bit(MaterialType t) { return 1u << static_cast<int>(t); }
+
+Scene one_sphere(Material m) {
+  Scene s;
+  m.name = "m";
+  s.materials.push_back(m);
+  s.spheres.push_back({.name = "ball", .material = "m"});
+  return s;
+}
+
+TEST(ShaderFeatures, GenericHasEverythingAndNoDefines) {
+  ShaderFeatures g = generic_features();
+  EXPECT_TRUE(g.has_emitters && g.has_textures && g.env_textured && g.thin_lens && g.has_coverage);
+  EXPECT_EQ(g.material_types, 0xFu);
+  EXPECT_EQ(shader_defines(g), "");
+}
+
+TEST(ShaderFeatures, EmptySceneNeedsNothing) {
+  Scene s;
+  s.camera.aperture_radius = 0;
+  ShaderFeatures f = scene_features(s);
+  EXPECT_FALSE(f.has_emitters || f.has_textures || f.env_textured || f.thin_lens || f.has_coverage);
+  EXPECT_EQ(f.material_types, 0u);
+  EXPECT_EQ(shader_defines(f),
+            "#define GLINT_NO_EMITTERS\n#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n"
+            "#define GLINT_NO_THIN_LENS\n#define GLINT_NO_COVERAGE\n#define GLINT_NO_MATTE\n"
+            "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n");
+}
+
+TEST(ShaderFeatures, CornellBox) {
+  ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint"));
+  EXPECT_TRUE(f.has_emitters);
+  EXPECT_FALSE(f.has_textures);
+  EXPECT_FALSE(f.env_textured);
+  EXPECT_FALSE(f.thin_lens);
+  EXPECT_FALSE(f.has_coverage);
+  EXPECT_EQ(f.material_types, bit(MaterialType::matte) | bit(MaterialType::reflective) |
+                                  bit(MaterialType::glossy));
+  EXPECT_EQ(shader_defines(f),
+            "#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n#define GLINT_NO_THIN_LENS\n"
+            "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n");
+}
+
+TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
+  // Emissive lamp, textures, sky, aperture 0.03, a checker with alpha on the cut-out panel, and
+  // all four material types.
+  ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/default.glint"));
+  EXPECT_EQ(f, generic_features());
+}
+
+TEST(ShaderFeatures, TexturedSpheresHaveOpaqueTexturesOnly) {
+  ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/textured_spheres.glint"));
+  EXPECT_TRUE(f.has_textures);
+  EXPECT_TRUE(f.env_textured);
+  EXPECT_FALSE(f.has_emitters);
+  EXPECT_FALSE(f.has_coverage) << "the colour textures are RGB: coverage is 1 everywhere";
+  EXPECT_EQ(f.material_types, bit(MaterialType::reflective) | bit(MaterialType::glossy));
+}
+
+TEST(ShaderFeatures, OnlyMaterialsOfPrimitivesCount) {
+  Scene s = one_sphere({.type = MaterialType::matte});
+  s.materials.push_back({.name = "unused", .type = MaterialType::transparent, .color_texture = "t",
+                         .emission = {1, 1, 1}, .opacity = 0.5f});
+  s.textures.push_back({.name = "t", .path = "t.png"});
+  ShaderFeatures f = scene_features(s);
+  EXPECT_EQ(f.material_types, bit(MaterialType::matte));
+  EXPECT_FALSE(f.has_emitters || f.has_textures || f.has_coverage);
+}
+
+TEST(ShaderFeatures, EmissionCountsOnlyWhenNonZero) {
+  // emission * texture: a texture on zero emission adds nothing, so it needs neither feature.
+  Scene s = one_sphere({.emission_texture = "t"});
+  s.textures.push_back({.name = "t", .path = "t.png"});
+  EXPECT_FALSE(scene_features(s).has_emitters);
+  EXPECT_FALSE(scene_features(s).has_textures);
+  s.materials[0].emission = {0, 0, 0.1f};
+  EXPECT_TRUE(scene_features(s).has_emitters);
+  EXPECT_TRUE(scene_features(s).has_textures);
+}
+
+TEST(ShaderFeatures, CoverageFromOpacityOrAnUnknownTexture) {
+  Scene s = one_sphere({.opacity = 0.99f});
+  EXPECT_TRUE(scene_features(s).has_coverage);
+  s.materials[0].opacity = 1;
+  EXPECT_FALSE(scene_features(s).has_coverage);
+  // A texture that cannot be probed might have alpha: keep the coverage test.
+  s.materials[0].color_texture = "missing";
+  s.textures.push_back({.name = "missing", .path = "/no/such/file.png"});
+  EXPECT_TRUE(scene_features(s).has_coverage);
+  EXPECT_TRUE(scene_features(s).has_textures);
+}
+
+TEST(ShaderFeatures, LensAndEnvironment) {
+  Scene s = one_sphere({});
+  s.camera.aperture_radius = 0.01f;
+  s.environment.texture = "sky.hdr";
+  ShaderFeatures f = scene_features(s);
+  EXPECT_TRUE(f.thin_lens);
+  EXPECT_TRUE(f.env_textured);
+}
+
+TEST(ShaderFeatures, CoversMeansEveryNeededFeatureIsCompiledIn) {
+  ShaderFeatures needed = scene_features(one_sphere({.type = MaterialType::glossy}));
+  EXPECT_TRUE(covers(generic_features(), needed));
+  EXPECT_TRUE(covers(needed, needed));
+  ShaderFeatures more = needed;
+  more.has_textures = true;
+  EXPECT_TRUE(covers(more, needed));
+  EXPECT_FALSE(covers(needed, more));
+  ShaderFeatures other_type = needed;
+  other_type.material_types = bit(MaterialType::matte);
+  EXPECT_FALSE(covers(other_type, needed));
+}
+
+}  // namespace
+}  // namespace glint
