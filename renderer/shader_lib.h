@@ -6,6 +6,7 @@
 // unit gets its own copy (internal linkage) and no definition clashes at link time.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -14,6 +15,19 @@ namespace glint::gpu {
 
 using namespace glm;  // vec3, dot, cross, normalize, clamp, mix, floatBitsToInt, ...
 using uint = std::uint32_t;
+
+// The environment-sampling tables that shaders/lib/environment_sampling.glsl reads through
+// accessor functions (a lib file cannot declare buffers): point this at the tables of a
+// glint::EnvironmentDistribution (renderer/environment_distribution.h) before calling
+// sample_environment or environment_pdf on the CPU. One per thread; the double build of the
+// tests reads the same tables.
+struct EnvironmentTablesView {
+  int width = 0;
+  int height = 0;
+  const float* marginal_cdf = nullptr;     // height + 1 entries
+  const float* conditional_cdf = nullptr;  // height rows of width + 1 entries
+};
+inline thread_local EnvironmentTablesView environment_tables;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -28,6 +42,13 @@ namespace {
 #include "shaders/lib/camera.glsl"
 #include "shaders/lib/bsdf.glsl"
 #include "shaders/lib/tonemap.glsl"
+#include "shaders/lib/lights.glsl"
+ivec2 env_distribution_size() { return ivec2(environment_tables.width, environment_tables.height); }
+float env_marginal_cdf(int i) { return environment_tables.marginal_cdf[i]; }
+float env_conditional_cdf(int row, int i) {
+  return environment_tables.conditional_cdf[std::size_t(row) * (environment_tables.width + 1) + i];
+}
+#include "shaders/lib/environment_sampling.glsl"
 }  // namespace
 #pragma GCC diagnostic pop
 

@@ -107,6 +107,16 @@ namespace {
 #undef GLINT_CAMERA_GLSL
 #undef GLINT_BSDF_GLSL
 #undef GLINT_TONEMAP_GLSL
+#undef GLINT_LIGHTS_GLSL
+#undef GLINT_ENVIRONMENT_SAMPLING_GLSL
+// The accessors of environment_sampling.glsl over the same float tables as the float build.
+ivec2 env_distribution_size() {
+  return ivec2(gpu::environment_tables.width, gpu::environment_tables.height);
+}
+double env_marginal_cdf(int i) { return gpu::environment_tables.marginal_cdf[i]; }
+double env_conditional_cdf(int row, int i) {
+  return gpu::environment_tables.conditional_cdf[std::size_t(row) * (gpu::environment_tables.width + 1) + i];
+}
 #define float double
 #include "shaders/lib/common.glsl"
 #include "shaders/lib/rng.glsl"
@@ -117,6 +127,8 @@ namespace {
 #include "shaders/lib/camera.glsl"
 #include "shaders/lib/bsdf.glsl"
 #include "shaders/lib/tonemap.glsl"
+#include "shaders/lib/lights.glsl"
+#include "shaders/lib/environment_sampling.glsl"
 #undef float
 }  // namespace
 #pragma GCC diagnostic pop

@@ -44,6 +44,8 @@ namespace {
     using BsdfSample = NS::BsdfSample;                                                         \
     using QuadHit = NS::QuadHit;                                                               \
     using BilinearTaps = NS::BilinearTaps;                                                     \
+    using LightSample = NS::LightSample;                                                       \
+    using EnvironmentSample = NS::EnvironmentSample;                                           \
     static constexpr const char* kName = Label;                                                \
     static constexpr Real kEps = std::numeric_limits<Real>::epsilon();                         \
     static Real pi() { return NS::PI; }                                                        \
@@ -92,6 +94,13 @@ namespace {
     GLINT_SHADER_FWD(NS, sample_bsdf)                                                          \
     GLINT_SHADER_FWD(NS, tonemap_channel)                                                      \
     GLINT_SHADER_FWD(NS, tonemap)                                                              \
+    GLINT_SHADER_FWD(NS, sample_sphere_light)                                                  \
+    GLINT_SHADER_FWD(NS, sphere_light_pdf)                                                     \
+    GLINT_SHADER_FWD(NS, sample_quad_light)                                                    \
+    GLINT_SHADER_FWD(NS, quad_light_pdf)                                                       \
+    GLINT_SHADER_FWD(NS, power_heuristic)                                                      \
+    GLINT_SHADER_FWD(NS, sample_environment)                                                   \
+    GLINT_SHADER_FWD(NS, environment_pdf)                                                      \
     static vec3 v3(double x, double y, double z) { return vec3(Real(x), Real(y), Real(z)); }   \
     static vec3 v3(glm::dvec3 v) { return vec3(Real(v.x), Real(v.y), Real(v.z)); }             \
     static vec2 v2(double x, double y) { return vec2(Real(x), Real(y)); }                      \
