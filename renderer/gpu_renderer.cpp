@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "renderer/camera_frame.h"
+#include "renderer/environment_distribution.h"
 #include "renderer/gl_program.h"
 #include "renderer/gpu_scene.h"
 
@@ -46,12 +47,12 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
-  glCreateBuffers(5, buffers_);
+  glCreateBuffers(6, buffers_);
 }
 
 GpuRenderer::~GpuRenderer() {
   resize(0, 0);
-  glDeleteBuffers(5, buffers_);
+  glDeleteBuffers(6, buffers_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   if (texture_array_) glDeleteTextures(1, &texture_array_);
@@ -183,6 +184,10 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   glTextureParameteri(environment_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  PackedEnvironmentDistribution tables =
+      pack_environment_distribution(build_environment_distribution(image));
+  upload_storage(buffers_[5], tables.data);
+  uniforms_.env_distribution_size = glm::ivec2(tables.width, tables.height);
 }
 
 void GpuRenderer::set_frame_uniforms(const Scene& scene) {
@@ -194,7 +199,11 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.env_rotation = glm::radians(env.rotation_deg);
   u.max_bounces = scene.render.max_bounces;
   u.light_count = options_.light_sampling ? light_count_ : 0;
-  u.env_select = 0.0f;
+  // Shadow rays go to an environment map (importance-sampled) half of the time when there are
+  // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted
+  // sampling of a constant is already as good as it gets for matte surfaces).
+  const bool env_lights = options_.environment_sampling && textured && env.intensity > 0;
+  u.env_select = env_lights ? (u.light_count > 0 ? 0.5f : 1.0f) : 0.0f;
   u.russian_roulette = options_.russian_roulette ? 1 : 0;
   u.clamp = options_.clamp;
   u.sobol = options_.sampler == SamplerKind::sobol ? 1 : 0;
@@ -221,6 +230,7 @@ void GpuRenderer::apply_trace_uniforms(GlProgram& p) {
   p.set("u_max_bounces", u.max_bounces);
   p.set("u_light_count", u.light_count);
   p.set("u_env_select", u.env_select);
+  p.set("u_env_distribution_size", u.env_distribution_size);
   p.set("u_russian_roulette", u.russian_roulette);
   p.set("u_clamp", u.clamp);
   p.set("u_sobol", u.sobol);
@@ -280,6 +290,7 @@ void GpuRenderer::prepare_specialised_program() {
         v.failed = true;
       }
     }
+  warm_up_trace_program();
 }
 
 void GpuRenderer::start_variant_if_missing() {
@@ -297,25 +308,44 @@ void GpuRenderer::start_variant_if_missing() {
   variants_.push_back(std::move(v));
 }
 
-void GpuRenderer::trace(int samples) {
-  if (samples <= 0 || width_ <= 0) return;
-  int next = 1 - current_;
+// Binds program, buffers and textures for a pass that adds `samples` samples into the spare
+// accumulation buffer.
+GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   GlProgram& p = choose_trace_program();
   apply_trace_uniforms(p);
   p.set("u_resolution", glm::ivec2(width_, height_));
   p.set("u_samples_before", static_cast<unsigned>(samples_));
   p.set("u_samples_per_pass", samples);
-  glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[next]);
+  glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[1 - current_]);
   glViewport(0, 0, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
   glUseProgram(p.id());
-  for (GLuint i = 0; i < 5; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(0, accumulation_[current_]);
   glBindTextureUnit(1, texture_array_);
   glBindTextureUnit(2, environment_texture_);
   glBindVertexArray(vao_);
+  return p;
+}
+
+// One pixel of the spare buffer, no samples (it is overwritten by the next pass): a driver that
+// compiles at the first draw (Mesa's llvmpipe JITs then, 0.6-1 s) does it here, not inside the
+// first timed pass.
+void GpuRenderer::warm_up_trace_program() {
+  if (width_ <= 0) return;
+  bind_trace_pass(0);
+  glViewport(0, 0, 1, 1);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glFinish();
+}
+
+void GpuRenderer::trace(int samples) {
+  if (samples <= 0 || width_ <= 0) return;
+  int next = 1 - current_;
+  bind_trace_pass(samples);
   collect_trace_timers(false);  // finished ones only, so the editor's list stays short
   // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
   // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.

@@ -60,8 +60,9 @@ class GpuRenderer {
   void trace(int samples);
 
   // For batch renders (`glint render`): compiles the program specialised to the synced scene
-  // now, waiting for it, so that no pass (and no driver JIT) is spent on the generic one.
-  // Does nothing with force_generic_shader or when the scene needs every feature.
+  // now, waiting for it, so that no pass is spent on the generic one, and draws one pixel with
+  // the program that will run (generic with force_generic_shader or when the scene needs every
+  // feature) so that a driver's compile-at-first-draw happens before the clock starts.
   void prepare_specialised_program();
 
   // What the synced scene needs, and the defines of the program that ran the last trace pass
@@ -97,6 +98,8 @@ class GpuRenderer {
   GlProgram& choose_trace_program();
   void start_variant_if_missing();
   void collect_trace_timers(bool wait);
+  GlProgram& bind_trace_pass(int samples);
+  void warm_up_trace_program();
 
   // A specialised trace program, compiled or still compiling.
   struct Variant {
@@ -121,6 +124,7 @@ class GpuRenderer {
     int max_bounces = 0;
     int light_count = 0;
     float env_select = 0;
+    glm::ivec2 env_distribution_size{1, 1};
     int russian_roulette = 0;
     float clamp = 0;
     int sobol = 0;
@@ -136,7 +140,8 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  GLuint buffers_[5] = {0, 0, 0, 0, 0};  // spheres, quads, materials, layer sizes, lights
+  GLuint buffers_[6] = {0, 0, 0, 0, 0, 0};  // spheres, quads, materials, layer sizes, lights,
+                                           // environment-sampling tables
   GLuint texture_array_ = 0;
   GLuint environment_texture_ = 0;
 

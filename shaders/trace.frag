@@ -118,13 +118,16 @@ vec3 environment(vec3 d) {
   return u_env_color;
 }
 
-// Importance sampling of the environment map (placeholder until the distribution lands).
-struct EnvironmentSample {
-  vec3 wi;
-  float pdf;
-};
-EnvironmentSample sample_environment_map(vec2 u) { return EnvironmentSample(vec3(0.0, 1.0, 0.0), 0.0); }
-float environment_map_pdf(vec3 d) { return 0.0; }
+// Importance sampling of the environment map: the tables of
+// renderer/environment_distribution.h, read by lib/environment_sampling.glsl.
+layout(std430, binding = 5) readonly buffer EnvDistribution { float env_cdf[]; };
+uniform ivec2 u_env_distribution_size;
+ivec2 env_distribution_size() { return u_env_distribution_size; }
+float env_marginal_cdf(int i) { return env_cdf[i]; }
+float env_conditional_cdf(int row, int i) {
+  return env_cdf[u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i];
+}
+#include "lib/environment_sampling.glsl"
 
 struct SceneHit {
   float t;
@@ -278,8 +281,8 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale)
   int target;
   vec3 origin = above;
   if (u_pick < u_env_select) {
-    EnvironmentSample es = sample_environment_map(u);
-    if (!(es.pdf > 0.0)) return vec3(0.0);
+    EnvironmentSample es = sample_environment(u, u_env_rotation);
+    if (!es.valid || !(es.pdf > 0.0)) return vec3(0.0);
     wi = es.wi;
     pdf = u_env_select * es.pdf;
     target = -1;
@@ -320,7 +323,7 @@ vec3 trace_path(Ray ray) {
     if (hit.material < 0) {
       float w = 1.0;
       if (!last_delta && u_env_select > 0.0) {
-        w = power_heuristic(last_pdf, u_env_select * environment_map_pdf(ray.direction));
+        w = power_heuristic(last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
       }
       radiance += throughput * environment(ray.direction) * w;
       break;
