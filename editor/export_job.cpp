@@ -39,6 +39,7 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings)
   auto errors = validate_scene(scene_);
   if (!errors.empty()) throw std::runtime_error(errors.front().what());
   renderer_ = std::make_unique<GpuRenderer>();
+  renderer_->set_options(settings_.estimator);
   renderer_->sync(scene_, settings_.width, settings_.height);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "renderer/render_options.h"
 #include "renderer/scene.h"
 
 namespace glint {
@@ -21,6 +22,7 @@ struct ExportSettings {
   int64_t samples = 64;
   double seconds = 10;
   std::filesystem::path output;  // .png (tonemapped), .hdr or .exr (linear radiance, alpha 1)
+  RenderOptions estimator;        // the viewport's (set when the export starts)
 };
 
 // "" when valid, else the problem (shown in the dialog before starting).

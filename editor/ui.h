@@ -19,6 +19,7 @@
 
 #include "editor/document.h"
 #include "editor/export_job.h"
+#include "renderer/render_options.h"
 #include "editor/thumbnails.h"
 
 namespace glint {
@@ -50,6 +51,8 @@ struct EditorState {
   unsigned display_texture = 0;
   FrameStats stats;
   ViewportResolution resolution = ViewportResolution::automatic;
+  // How the viewport and exports sample (not saved in the project; see render_options.h).
+  RenderOptions estimator;
 
   // Viewport tools and drags.
   bool focus_tool = false;   // a click sets the focus distance instead of selecting

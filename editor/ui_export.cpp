@@ -97,6 +97,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     ImGui::BeginDisabled(!problem.empty());
     if (ImGui::Button("Render", ImVec2(120, 0))) {
       try {
+        s.estimator = state.estimator;
         state.export_job = std::make_unique<ExportJob>(doc.scene, s);
         state.export_message.clear();
       } catch (const std::exception& e) {

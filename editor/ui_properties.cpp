@@ -170,6 +170,26 @@ void environment_properties(Document& doc, EditorState& state) {
   ImGui::DragFloat("Rotation", &e.rotation_deg, 0.5f, -360, 360, "%.1f deg", kClamp);
 }
 
+// The estimator: not part of the scene, so no undo step and no save; a change restarts the
+// accumulation through the renderer's sync.
+void sampling_properties(EditorState& state) {
+  RenderOptions& o = state.estimator;
+  section_title("Sampling");
+  ImGui::Checkbox("Light sampling", &o.light_sampling);
+  ImGui::Checkbox("Environment sampling", &o.environment_sampling);
+  ImGui::Checkbox("Russian roulette", &o.russian_roulette);
+  bool sobol = o.sampler == SamplerKind::sobol;
+  if (ImGui::Checkbox("Sobol sampler", &sobol)) o.sampler = sobol ? SamplerKind::sobol : SamplerKind::pcg;
+  bool clamp = o.clamp > 0;
+  if (ImGui::Checkbox("Clamp fireflies (biased)", &clamp)) o.clamp = clamp ? 10.0f : 0.0f;
+  if (clamp) ImGui::DragFloat("Clamp luminance", &o.clamp, 0.1f, 0.01f, 1e6f, "%.2f", kClamp);
+  if (clamp) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Clamping darkens bright highlights: the image no longer converges to the right answer.");
+    ImGui::PopStyleColor();
+  }
+}
+
 void camera_properties(Document& doc) {
   Camera& c = doc.scene.camera;
   ImGui::DragFloat3("Position", &c.position.x, 0.01f);
@@ -214,6 +234,7 @@ void draw_properties(Document& doc, EditorState& state) {
   } else {
     section_title("Camera");
     camera_properties(doc);
+    sampling_properties(state);
   }
   // The selected object's material right below it: the common edit needs no second click.
   std::string* material = nullptr;

@@ -49,6 +49,7 @@ void ViewportRenderer::render(Document& doc, EditorState& state) {
   bool synced = false;
   if (problems.empty()) {
     try {
+      renderer_.set_options(state.estimator);
       renderer_.sync(doc.scene, w, h);
       synced = true;
     } catch (const std::exception& e) {

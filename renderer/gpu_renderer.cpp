@@ -41,6 +41,22 @@ GLuint make_framebuffer(GLuint texture) {
   return fbo;
 }
 
+// Mesa's llvmpipe ends every loop of a shader invocation once all its loops together have run
+// 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop"): a pass of many
+// samples then silently skips intersection tests and returns garbage or NaN (the default
+// project at 16x16 in one pass of 1000 samples: 28% of samples non-finite; in passes of 100:
+// none). So a pass draws at most samples_per_draw_ samples per fragment, estimated from the
+// loops one sample runs (a bound, not a count: see samples_per_draw), and trace(k) issues as
+// many draws as it needs. Other drivers have no such limit; the draws cost them nothing
+// noticeable either.
+int samples_per_draw(long shapes, int max_bounces) {
+  // Per bounce: the closest-hit loops of the path ray and of a shadow ray (with a few
+  // pass-throughs), the light and environment binary searches, the BSDF and light code.
+  const long per_bounce = 3 * (shapes + 2) + 64;
+  const long per_sample = (max_bounces + 2L) * per_bounce;
+  return static_cast<int>(std::clamp(16384L / std::max(per_sample, 1L), 1L, 64L));
+}
+
 }  // namespace
 
 GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options) {
@@ -136,6 +152,7 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_storage(buffers_[1], packed.quads);
   upload_storage(buffers_[2], packed.materials);
   upload_storage(buffers_[4], packed.lights);
+  shape_count_ = static_cast<long>(packed.spheres.size() + packed.quads.size());
   light_count_ = static_cast<int>(packed.lights.size());
   uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
   uniforms_.quad_count = static_cast<int>(packed.quads.size());
@@ -198,6 +215,7 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.env_textured = textured ? 1 : 0;
   u.env_rotation = glm::radians(env.rotation_deg);
   u.max_bounces = scene.render.max_bounces;
+  samples_per_draw_ = samples_per_draw(shape_count_, scene.render.max_bounces);
   u.light_count = options_.light_sampling ? light_count_ : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are
   // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted
@@ -344,20 +362,23 @@ void GpuRenderer::warm_up_trace_program() {
 
 void GpuRenderer::trace(int samples) {
   if (samples <= 0 || width_ <= 0) return;
-  int next = 1 - current_;
-  bind_trace_pass(samples);
   collect_trace_timers(false);  // finished ones only, so the editor's list stays short
   // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
   // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
   GLuint timer[2] = {0, 0};
   glCreateQueries(GL_TIMESTAMP, 2, timer);
   glQueryCounter(timer[0], GL_TIMESTAMP);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  for (int done = 0; done < samples;) {
+    const int n = std::min(samples - done, samples_per_draw_);
+    bind_trace_pass(n);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    current_ = 1 - current_;
+    samples_ += n;
+    done += n;
+  }
   glQueryCounter(timer[1], GL_TIMESTAMP);
   trace_timers_.insert(trace_timers_.end(), timer, timer + 2);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  current_ = next;
-  samples_ += samples;
   display_stale_ = true;
   // After the pass, so that a driver without parallel compilation (Mesa's llvmpipe links in
   // glLinkProgram) at least has this pass queued first.

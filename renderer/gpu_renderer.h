@@ -156,6 +156,8 @@ class GpuRenderer {
   glm::dvec3 origin_{0};  // render_origin of the packed scene
   RenderOptions synced_options_;
   int light_count_ = 0;
+  long shape_count_ = 0;
+  int samples_per_draw_ = 1;  // samples one draw adds per pixel (llvmpipe's loop limit)
   std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;

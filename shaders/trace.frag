@@ -79,23 +79,32 @@ uniform bool u_sobol;   // Owen-scrambled Sobol points instead of independent PC
 
 layout(location = 0) out vec4 out_accumulation;
 
-// The sample's random numbers. PCG: one hashed stream per (pixel, sample, seed). Sobol: the
-// sample's point in dimension g_dimension of the pixel's scrambled sequence; every call takes
-// the next dimension (1-D and 2-D dimensions are scrambled independently, sobol.glsl).
+// The sample's random numbers. PCG: one hashed stream per (pixel, sample, seed), read in
+// order. Sobol: the sample's point in a given dimension of the pixel's scrambled sequence (1-D
+// and 2-D dimensions are scrambled independently, sobol.glsl). Dimensions are laid out by
+// purpose so that every sample uses the same one for the same decision (a dimension shared by
+// different decisions in different samples loses its stratification): 0 and 1 the pixel and
+// lens positions (2-D), then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
+// Decisions that are taken only sometimes (coverage, roulette) use the PCG stream.
 uint g_rng;
 uint g_sample_index;
 uint g_pixel_seed;
-uint g_dimension;
 float rand() {
-  if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, g_dimension++);
   g_rng = rng_advance(g_rng);
   return rng_to_unit_float(g_rng);
 }
-vec2 rand2() {
-  if (u_sobol) return sobol_sample_2d(g_sample_index, g_pixel_seed, g_dimension++);
+float sample_1d(uint dimension) {
+  if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, dimension);
+  return rand();
+}
+vec2 sample_2d(uint dimension) {
+  if (u_sobol) return sobol_sample_2d(g_sample_index, g_pixel_seed, dimension);
   float a = rand();
   return vec2(a, rand());
 }
+const uint DIMENSIONS_PER_BOUNCE = 2u;
+uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
+uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
 
 vec4 texture_lookup(int layer, vec2 uv) {
 #if defined(GLINT_NO_TEXTURES)
@@ -272,9 +281,9 @@ LightSample sample_light(int i, vec3 origin, vec2 u) {
 // epsilons of 1e5 is 0.19), and a direction chosen from p but traced from the offset point
 // would miss the edges of the light it aimed at (biased). BSDF rays record the same origin
 // (last_p in trace_path), so both strategies see the light from the same point.
-vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale) {
-  float u_pick = rand();
-  vec2 u = rand2();
+vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale, int bounce) {
+  float u_pick = sample_1d(light_dimension(bounce));
+  vec2 u = sample_2d(light_dimension(bounce));
   vec3 above = offset_surface_point(p, n, error_scale);
   vec3 wi;
   float pdf;
@@ -355,10 +364,10 @@ vec3 trace_path(Ray ray) {
     SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
     bool delta = is_delta_material(m);
     if (light_sampling && !delta) {
-      radiance += throughput * direct_light(m, p, n, wo, hit.error_scale);
+      radiance += throughput * direct_light(m, p, n, wo, hit.error_scale, bounces);
     }
-    float u_lobe = rand();
-    vec2 u = rand2();
+    float u_lobe = sample_1d(bsdf_dimension(bounces));
+    vec2 u = sample_2d(bsdf_dimension(bounces));
     BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
     if (!s.valid) break;
     throughput *= s.weight;
@@ -401,10 +410,9 @@ void main() {
   for (int s = 0; s < u_samples_per_pass; ++s) {
     g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
     g_sample_index = u_samples_before + uint(s);
-    g_dimension = 0u;
-    vec2 jitter = rand2();
+    vec2 jitter = sample_2d(0u);
     vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);
-    vec2 lens = rand2();
+    vec2 lens = sample_2d(1u);
     vec3 l = trace_path(camera_ray(cam, film, lens));
     // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
     float lum = luminance(l);

@@ -79,8 +79,7 @@ Image constant_image(int w, int h, float r, float g, float b) {
 
 // The Cornell box at 32x32 against a 256-spp reference of another seed (independent noise), to
 // 48 spp: checkpoints at the powers of two and at 48. The expected relMSE falls like
-// var/N + var/256, from ~1.004 var at 1 spp to ~0.025 var at 48; "last < first / 2" leaves a
-// wide margin for the heavy tail of a BSDF-sampled small light.
+// var/N + var/256, from ~1.004 var at 1 spp to ~0.025 var at 48.
 TEST(RenderLog, NoisySceneConvergesTowardsAnIndependentReference) {
   test::TempDir dir;
   const std::string project = (fs::path(GLINT_SOURCE_DIR) / "projects/cornell_box.glint").string();
@@ -104,9 +103,15 @@ TEST(RenderLog, NoisySceneConvergesTowardsAnIndependentReference) {
       EXPECT_GT(r.gpu_seconds, rows[i - 1].gpu_seconds);
     }
   }
-  EXPECT_LT(rows.back().relmse, rows.front().relmse / 2);
-  EXPECT_LT(rows.back().relmse_trimmed, rows.front().relmse_trimmed / 2);
-  EXPECT_LT(rows.back().mape, rows.front().mape);
+  // With light sampling the remaining error is a heavy tail (caustic paths: the lamp seen in
+  // the mirror sphere, found by BSDF sampling only), so the relMSE of one run jumps by up to
+  // 10x between checkpoints (measured: 0.15 at 1 spp, 1.77 at 2, 0.066 at 48). It still falls
+  // from 1 to 48 spp (a firefly's share drops by 48^2), and MAPE, which a few pixels cannot
+  // dominate, falls like 1/sqrt(N) down to the 256-spp reference's own noise (measured 0.42 at
+  // 1 spp and 0.15 at 48, with either sampler): at least by 2.
+  EXPECT_LT(rows.back().relmse, rows.front().relmse);
+  EXPECT_LT(rows.back().relmse_trimmed, rows.front().relmse_trimmed);
+  EXPECT_LT(rows.back().mape, rows.front().mape / 2);
 }
 
 // Zero-variance scene against its exact image: every row's error is float rounding only
