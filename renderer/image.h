@@ -43,6 +43,11 @@ ImageInfo probe_image(const std::filesystem::path& path);
 // `encoding` applies only to 8-bit sources.
 Image load_image(const std::filesystem::path& path, ColorEncoding encoding);
 
+// The same for a file's bytes already in memory (the fuzz targets); `label` names it in errors.
+ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& label);
+Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& label,
+                      ColorEncoding encoding);
+
 // Writes by extension: .png (values clamped to [0,1], written as 8-bit without further encoding),
 // .hdr (RGB), .exr (RGBA float32). Throws ImageError on failure or an unknown extension.
 void save_image(const std::filesystem::path& path, const Image& image);

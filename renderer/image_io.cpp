@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -54,6 +55,8 @@ std::vector<unsigned char> read_file(const std::filesystem::path& path, size_t m
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) fail(path, "file not found");
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image");
+  // A FIFO or device (a texture path of /dev/stdin) would block or never end.
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, std::string("cannot open file: ") + std::strerror(errno));
   std::vector<unsigned char> bytes;
@@ -210,8 +213,9 @@ Image decode_stb(const std::filesystem::path& path, StbSource& source, Load load
   // Native channel count (desired 0): grey and grey+alpha are expanded here, not by stb.
   std::unique_ptr<T, decltype(&stbi_image_free)> data(
       load(&StbSource::callbacks, &source, &width, &height, &channels, 0), &stbi_image_free);
-  if (!data) fail(path, "cannot decode image (" + stb_reason() + ")");
+  // Past the end stb reads filler and may fail on it: the real problem is then the truncation.
   if (source.overrun) fail(path, "file is truncated");
+  if (!data) fail(path, "cannot decode image (" + stb_reason() + ")");
   check_dimensions(path, width, height);
   if (channels < 1 || channels > 4) fail(path, "unsupported channel count");
   return expand_to_rgba(data.get(), width, height, channels, convert);
@@ -234,6 +238,44 @@ Image load_stb(const std::filesystem::path& path, const std::vector<unsigned cha
   return decode_stb<stbi_uc>(path, source, stbi_load_from_callbacks, [&](stbi_uc v, bool alpha) {
     return srgb && !alpha ? table[v] : static_cast<float>(v) / 255.0f;
   });
+}
+
+// stb_image checks neither the CRC of PNG chunks nor zlib's Adler-32, so a corrupted file can
+// decode to wrong pixels without an error. The chunk layout and CRCs (PNG spec, ISO 15948
+// sections 5.3 and 15.3 / annex D: CRC-32 with polynomial 0xEDB88320, over type and data) are
+// checked here first; trailing bytes after IEND are ignored as decoders do.
+uint32_t png_crc(const unsigned char* data, size_t size, uint32_t crc) {
+  static const std::array<uint32_t, 256> table = [] {
+    std::array<uint32_t, 256> t{};
+    for (uint32_t n = 0; n < 256; ++n) {
+      uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xedb88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xff] ^ (crc >> 8);
+  return crc;
+}
+
+void check_png_chunks(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  auto be32 = [&](size_t at) {
+    return uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 |
+           uint32_t(bytes[at + 2]) << 8 | uint32_t(bytes[at + 3]);
+  };
+  size_t at = 8;  // after the signature
+  for (;;) {
+    if (bytes.size() - at < 12) fail(path, "file is truncated (no IEND chunk)");
+    const size_t length = be32(at);
+    const std::string type(reinterpret_cast<const char*>(&bytes[at + 4]), 4);
+    const std::string where = "chunk '" + type + "' at byte " + std::to_string(at);
+    if (length > bytes.size() - at - 12) fail(path, "file is truncated (" + where + " runs past the end)");
+    const uint32_t stored = be32(at + 8 + length);
+    if ((png_crc(&bytes[at + 4], length + 4, 0xffffffffu) ^ 0xffffffffu) != stored)
+      fail(path, "corrupt PNG (CRC mismatch in " + where + ")");
+    if (type == "IEND") return;
+    at += 12 + length;
+  }
 }
 
 // --- OpenEXR -----------------------------------------------------------------------------------
@@ -390,6 +432,12 @@ ImageInfo probe_image(const std::filesystem::path& path) {
   constexpr size_t kPrefix = 65536;
   std::vector<unsigned char> bytes = read_file(path, kPrefix);
   const Format format = require_format(path, bytes);
+  if (format == Format::png) {
+    // The whole file: its chunk CRCs are cheap to check and catch corruption anywhere, so a
+    // project with a damaged texture is refused when it is opened, not when it is rendered.
+    if (bytes.size() == kPrefix) bytes = read_file(path, std::numeric_limits<int>::max());
+    check_png_chunks(path, bytes);
+  }
   if (bytes.size() == kPrefix) {
     try {
       return probe_bytes(path, bytes, format);
@@ -406,9 +454,24 @@ Image load_image(const std::filesystem::path& path, ColorEncoding encoding) {
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size >= static_cast<uintmax_t>(std::numeric_limits<int>::max()))
     fail(path, "file is too large");
-  const std::vector<unsigned char> bytes = read_file(path, std::numeric_limits<int>::max());
-  if (require_format(path, bytes) == Format::openexr) return load_exr(path, bytes);
+  return load_image_data(read_file(path, std::numeric_limits<int>::max()), path, encoding);
+}
+
+Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& path,
+                      ColorEncoding encoding) {
+  if (bytes.empty()) fail(path, "file is empty");
+  if (bytes.size() >= static_cast<size_t>(std::numeric_limits<int>::max())) fail(path, "file is too large");
+  const Format format = require_format(path, bytes);
+  if (format == Format::openexr) return load_exr(path, bytes);
+  if (format == Format::png) check_png_chunks(path, bytes);
   return load_stb(path, bytes, encoding);
+}
+
+ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& path) {
+  if (bytes.empty()) fail(path, "file is empty");
+  const Format format = require_format(path, bytes);
+  if (format == Format::png) check_png_chunks(path, bytes);
+  return probe_bytes(path, bytes, format);
 }
 
 void save_image(const std::filesystem::path& path, const Image& image) {

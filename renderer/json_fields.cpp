@@ -46,6 +46,9 @@ float read_float(const Json& value, const std::string& file, const std::string& 
   const double d = value.get<double>();
   // Below 2^128 - 2^103 a double rounds to a finite float (FLT_MAX at most); JSON has no
   // NaN or infinity, so this is the only way to get a non-finite float from a file.
+  // A literal beyond a double (1e999) parses as infinity, which dump() would show as null.
+  if (!std::isfinite(d))
+    fail(file, path, "out of range of a 32-bit float (got a number beyond the range of a double)");
   if (!(std::fabs(d) < 0x1.ffffffp127))
     fail(file, path, "out of range of a 32-bit float (got " + value.dump() + ")");
   return static_cast<float>(d);
@@ -68,6 +71,32 @@ glm::vec2 read_vec2(const Json& value, const std::string& file, const std::strin
 
 glm::vec3 read_vec3(const Json& value, const std::string& file, const std::string& path) {
   return read_vec<3>(value, file, path);
+}
+
+bool is_valid_utf8(std::string_view text) {
+  size_t i = 0;
+  while (i < text.size()) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) { ++i; continue; }
+    size_t n;
+    uint32_t cp;
+    if (c >= 0xc2 && c <= 0xdf) { n = 1; cp = c & 0x1f; }
+    else if (c >= 0xe0 && c <= 0xef) { n = 2; cp = c & 0x0f; }
+    else if (c >= 0xf0 && c <= 0xf4) { n = 3; cp = c & 0x07; }
+    else return false;
+    if (text.size() - i <= n) return false;
+    for (size_t k = 1; k <= n; ++k) {
+      const unsigned char cc = static_cast<unsigned char>(text[i + k]);
+      if ((cc & 0xc0) != 0x80) return false;
+      cp = (cp << 6) | (cc & 0x3f);
+    }
+    // Overlong forms, UTF-16 surrogates and code points past U+10FFFF.
+    if ((n == 2 && cp < 0x800) || (n == 3 && cp < 0x10000) || cp > 0x10ffff ||
+        (cp >= 0xd800 && cp <= 0xdfff))
+      return false;
+    i += n + 1;
+  }
+  return true;
 }
 
 std::string integer_range_problem(int64_t min, int64_t max, const std::string& got) {
@@ -175,30 +204,41 @@ Json vec_to_json(glm::vec3 v) {
 
 namespace {
 
-// Follows the parser's events to know the JSON path of each key, so that a key given twice in
-// one object (which nlohmann would silently resolve to the last value) is reported.
-class DuplicateKeyCheck {
+// nlohmann resolves a key given twice in one object silently (the last value wins), so this
+// SAX handler builds the document with nlohmann's own DOM builder and reports duplicates with
+// their JSON path on the way, and syntax errors. (The parser-callback API would do the same,
+// but nlohmann's callback parser rescans the enclosing array at the end of every object:
+// quadratic, minutes for 10^6 spheres.)
+class DuplicateKeySax {
  public:
-  explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+  DuplicateKeySax(const std::string& file, Json& out) : file_(file), dom_(out, true) {}
 
-  bool operator()(int, Json::parse_event_t event, Json& parsed) {
-    using E = Json::parse_event_t;
-    switch (event) {
-      case E::object_start:
-      case E::array_start:
-        frames_.push_back({event == E::array_start, 0, {}, {}, element_path()});
-        break;
-      case E::key: {
-        Frame& f = frames_.back();
-        f.key = parsed.get<std::string>();
-        if (!f.keys.insert(f.key).second) fail(file_, child_path(f.path, f.key), "duplicate key");
-        break;
-      }
-      case E::object_end:
-      case E::array_end: frames_.pop_back(); next_element(); break;
-      case E::value: next_element(); break;
-    }
-    return true;
+  bool null() { return value() && dom_.null(); }
+  bool boolean(bool v) { return value() && dom_.boolean(v); }
+  bool number_integer(Json::number_integer_t v) { return value() && dom_.number_integer(v); }
+  bool number_unsigned(Json::number_unsigned_t v) { return value() && dom_.number_unsigned(v); }
+  bool number_float(Json::number_float_t v, const Json::string_t& s) {
+    return value() && dom_.number_float(v, s);
+  }
+  bool string(Json::string_t& v) { return value() && dom_.string(v); }
+  bool binary(Json::binary_t& v) { return value() && dom_.binary(v); }
+  bool start_object(std::size_t n) { return start(false) && dom_.start_object(n); }
+  bool start_array(std::size_t n) { return start(true) && dom_.start_array(n); }
+  bool end_object() { return end() && dom_.end_object(); }
+  bool end_array() { return end() && dom_.end_array(); }
+  bool key(Json::string_t& key) {
+    Frame& f = frames_.back();
+    f.key = key;
+    if (!f.keys.insert(key).second) fail(file_, child_path(f.path, key), "duplicate key");
+    return dom_.key(key);
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." -> drop the tag.
+    std::string message = e.what();
+    const auto end = message.find("] ");
+    if (message.starts_with("[json.exception") && end != std::string::npos)
+      message.erase(0, end + 2);
+    fail(file_, "", "invalid JSON: " + message);
   }
 
  private:
@@ -216,11 +256,21 @@ class DuplicateKeyCheck {
     return parent.is_array ? index_path(parent.path, parent.index)
                            : child_path(parent.path, parent.key);
   }
-  void next_element() {
+  bool start(bool is_array) {
+    frames_.push_back({is_array, 0, {}, {}, element_path()});
+    return true;
+  }
+  bool end() {
+    frames_.pop_back();
+    return value();
+  }
+  bool value() {
     if (!frames_.empty() && frames_.back().is_array) ++frames_.back().index;
+    return true;
   }
 
   const std::string& file_;
+  nlohmann::detail::json_sax_dom_parser<Json> dom_;
   std::vector<Frame> frames_;
 };
 
@@ -265,16 +315,10 @@ void write(const Json& v, int indent, std::string& out) {
 }  // namespace
 
 Json parse_text(const std::string& text, const std::string& file) {
-  try {
-    return Json::parse(text, DuplicateKeyCheck(file));
-  } catch (const Json::exception& e) {
-    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." -> drop the tag.
-    std::string message = e.what();
-    const auto end = message.find("] ");
-    if (message.starts_with("[json.exception") && end != std::string::npos)
-      message.erase(0, end + 2);
-    fail(file, "", "invalid JSON: " + message);
-  }
+  Json doc;
+  DuplicateKeySax parser(file, doc);
+  Json::sax_parse(text, &parser);  // throws ProjectError on a syntax error or a duplicate key
+  return doc;
 }
 
 std::string pretty_print(const Json& doc) {

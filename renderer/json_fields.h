@@ -39,6 +39,10 @@ int64_t read_integer(const Json& value, int64_t min, int64_t max, const std::str
                      const std::string& path);
 std::string read_string(const Json& value, const std::string& file, const std::string& path);
 
+// Whether `text` is well-formed UTF-8 (RFC 3629: no overlong forms, surrogates or values past
+// U+10FFFF), which JSON text must be.
+bool is_valid_utf8(std::string_view text);
+
 // "must be an integer in [1, 16384] (got 0)": shared by the parser and validate_scene.
 std::string integer_range_problem(int64_t min, int64_t max, const std::string& got);
 

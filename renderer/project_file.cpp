@@ -5,6 +5,8 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -34,8 +36,29 @@ std::string error_message(const std::string& file, const std::string& path,
 
 // ---- Parsing: structure and types. Values are checked afterwards by validate_scene. ----
 
-constexpr int kMaxFilmSize = 16384;
 constexpr int kMaxBounces = 1024;
+
+// A name in quotes for a message; invalid UTF-8 (possible in scenes built through the API)
+// is shown replaced rather than thrown by nlohmann's dump.
+std::string quote_name(const std::string& text) {
+  return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+// "335.3 GiB", "512.0 MiB".
+std::string bytes_text(double bytes) {
+  const bool gib = bytes >= double(1 << 30);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.1f %s", bytes / double(gib ? 1 << 30 : 1 << 20),
+                gib ? "GiB" : "MiB");
+  return buffer;
+}
+
+// The array sizes of load_project's limits (project_file.h).
+std::string count_problem(size_t count, size_t limit, const char* what) {
+  return "too many " + std::string(what) + ": " + std::to_string(count) + " (the limit is " +
+         std::to_string(limit) + ", so that their GPU array fits the 128 MiB that OpenGL 4.5 "
+         "guarantees for a shader storage block)";
+}
 
 Camera parse_camera(const Json& j, const std::string& file) {
   ObjectReader r(j, "camera", file,
@@ -72,7 +95,7 @@ Material parse_material(const Json& j, const std::string& path, const std::strin
     const auto parsed = material_type_from_string(text);
     if (!parsed)
       json_fields::fail(file, r.path("type"),
-                        "unknown material type " + Json(text).dump() +
+                        "unknown material type " + quote_name(text) +
                             " (expected matte, reflective, glossy or transparent)");
     m.type = *parsed;
   }
@@ -121,11 +144,15 @@ Quad parse_quad(const Json& j, const std::string& path, const std::string& file)
   return q;
 }
 
-// Reads the array under `key` of the root object, one element at a time.
+// Reads the array under `key` of the root object, one element at a time; an array longer
+// than `limit` is refused before any element is read.
 template <class T, class Parse>
 void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out, Parse parse,
-                const std::string& file) {
-  if (const Json* items = root.array(key))
+                const std::string& file, size_t limit = SIZE_MAX) {
+  const Json* items = root.array(key);
+  if (items && items->size() > limit)
+    json_fields::fail(file, key, count_problem(items->size(), limit, key));
+  if (items)
     for (size_t i = 0; i < items->size(); ++i)
       out.push_back(parse((*items)[i], index_path(key, i), file));
 }
@@ -178,15 +205,15 @@ class Checker {
     if (name.empty()) return;
     auto [it, inserted] = seen.emplace(name, path);
     if (!inserted)
-      add(path, std::string("duplicate ") + what + " name " + Json(name).dump() + " (first at " +
+      add(path, std::string("duplicate ") + what + " name " + quote_name(name) + " (first at " +
                     it->second + ")");
   }
   void material_ref(const std::string& path, const std::string& name) {
-    if (find_material(scene_, name) < 0) add(path, "unknown material " + Json(name).dump());
+    if (find_material(scene_, name) < 0) add(path, "unknown material " + quote_name(name));
   }
   void texture_ref(const std::string& path, const std::string& name) {
     if (!name.empty() && find_texture(scene_, name) < 0)
-      add(path, "unknown texture " + Json(name).dump());
+      add(path, "unknown texture " + quote_name(name));
   }
   void image_file(const std::string& path, const std::string& file) {
     if (file.empty() || !check_files_) return;
@@ -302,8 +329,18 @@ Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file
   if (const Json* j = root.find("camera")) s.camera = parse_camera(*j, file);
   if (const Json* j = root.find("film")) {
     ObjectReader r(*j, "film", file, {"width", "height"});
-    r.read_integer("width", 1, kMaxFilmSize, s.film.width);
-    r.read_integer("height", 1, kMaxFilmSize, s.film.height);
+    // Any integer first (saturated to int64), then the limits with a memory estimate.
+    auto side = [&](const char* key, int current) -> int64_t {
+      const Json* v = r.find(key);
+      if (!v) return current;
+      if (!v->is_number_integer()) fail(file, r.path(key), "expected an integer, got " + json_fields::describe(*v));
+      if (v->is_number_unsigned() && v->get<uint64_t>() > uint64_t(INT64_MAX)) return INT64_MAX;
+      return v->get<int64_t>();
+    };
+    const int64_t width = side("width", s.film.width), height = side("height", s.film.height);
+    if (const auto problem = check_film_size(width, height))
+      fail(file, problem->json_path, problem->problem);
+    s.film = {static_cast<int>(width), static_cast<int>(height)};
   }
   if (const Json* j = root.find("render")) {
     ObjectReader r(*j, "render", file, {"max_bounces", "seed"});
@@ -318,7 +355,7 @@ Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file
     const auto parsed = tonemap_from_string(tonemap);
     if (!parsed)
       fail(file, "display.tonemap",
-           "unknown tonemap " + Json(tonemap).dump() + " (expected filmic or linear)");
+           "unknown tonemap " + quote_name(tonemap) + " (expected filmic or linear)");
     s.display.tonemap = *parsed;
   }
   if (const Json* j = root.find("environment")) {
@@ -330,8 +367,8 @@ Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file
   }
   parse_list(root, "textures", s.textures, parse_texture, file);
   parse_list(root, "materials", s.materials, parse_material, file);
-  parse_list(root, "spheres", s.spheres, parse_sphere, file);
-  parse_list(root, "quads", s.quads, parse_quad, file);
+  parse_list(root, "spheres", s.spheres, parse_sphere, file, kMaxSpheres);
+  parse_list(root, "quads", s.quads, parse_quad, file, kMaxQuads);
 
   const auto problems = validate_scene(s, check_files);
   if (!problems.empty()) fail(file, problems.front().json_path, problems.front().problem);
@@ -343,11 +380,34 @@ Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
   return scene_from_json(nlohmann::ordered_json(doc), file_label, base_dir, check_files);
 }
 
+std::optional<ProjectError> check_film_size(int64_t width, int64_t height) {
+  const bool positive = width >= 1 && height >= 1;
+  const double pixels = double(width) * double(height);
+  std::string memory;
+  if (positive && pixels > double(kMaxFilmPixels))
+    memory = "a " + std::to_string(width) + "x" + std::to_string(height) + " film would need " +
+             bytes_text(pixels * kFilmBytesPerPixel) + " of GPU buffers (" +
+             std::to_string(kFilmBytesPerPixel) + " bytes per pixel), the limit is " +
+             bytes_text(double(kMaxFilmPixels) * kFilmBytesPerPixel) + " (" +
+             std::to_string(kMaxFilmPixels) + " pixels, e.g. 8192x8192)";
+  for (const auto& [key, side] : {std::pair{"film.width", width}, std::pair{"film.height", height}})
+    if (side < 1 || side > kMaxFilmSide)
+      return ProjectError("", key,
+                          json_fields::integer_range_problem(1, kMaxFilmSide, std::to_string(side)) +
+                              (memory.empty() ? "" : "; " + memory));
+  if (!memory.empty()) return ProjectError("", "film", memory);
+  return std::nullopt;
+}
+
 std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
   Checker c(scene, check_files);
   check_camera(c, scene.camera);
-  c.integer_in("film.width", scene.film.width, 1, kMaxFilmSize);
-  c.integer_in("film.height", scene.film.height, 1, kMaxFilmSize);
+  if (const auto problem = check_film_size(scene.film.width, scene.film.height))
+    c.problems.push_back(*problem);
+  if (scene.spheres.size() > kMaxSpheres)
+    c.add("spheres", count_problem(scene.spheres.size(), kMaxSpheres, "spheres"));
+  if (scene.quads.size() > kMaxQuads)
+    c.add("quads", count_problem(scene.quads.size(), kMaxQuads, "quads"));
   c.integer_in("render.max_bounces", scene.render.max_bounces, 0, kMaxBounces);
   c.finite("display.exposure", scene.display.exposure);
 
@@ -485,6 +545,36 @@ Scene rebase_asset_paths(const Scene& scene, const fs::path& new_base_dir) {
   return out;
 }
 
+Scene load_project_text(const std::string& text, const std::string& file_label,
+                        const fs::path& base_dir, bool check_files) {
+  return scene_from_json(json_fields::parse_text(text, file_label), file_label, base_dir,
+                         check_files);
+}
+
+// The JSON path of the first string of the scene that is not valid UTF-8, or "".
+std::string first_non_utf8_string(const Scene& s) {
+  using json_fields::is_valid_utf8;
+  if (!is_valid_utf8(s.environment.texture)) return "environment.texture";
+  for (size_t i = 0; i < s.textures.size(); ++i)
+    for (const auto& [key, text] : {std::pair{"name", &s.textures[i].name}, std::pair{"path", &s.textures[i].path}})
+      if (!is_valid_utf8(*text)) return child_path(index_path("textures", i), key);
+  for (size_t i = 0; i < s.materials.size(); ++i) {
+    const Material& m = s.materials[i];
+    for (const auto& [key, text] :
+         {std::pair{"name", &m.name}, std::pair{"color_texture", &m.color_texture},
+          std::pair{"emission_texture", &m.emission_texture},
+          std::pair{"roughness_texture", &m.roughness_texture}})
+      if (!is_valid_utf8(*text)) return child_path(index_path("materials", i), key);
+  }
+  for (size_t i = 0; i < s.spheres.size(); ++i)
+    for (const auto& [key, text] : {std::pair{"name", &s.spheres[i].name}, std::pair{"material", &s.spheres[i].material}})
+      if (!is_valid_utf8(*text)) return child_path(index_path("spheres", i), key);
+  for (size_t i = 0; i < s.quads.size(); ++i)
+    for (const auto& [key, text] : {std::pair{"name", &s.quads[i].name}, std::pair{"material", &s.quads[i].material}})
+      if (!is_valid_utf8(*text)) return child_path(index_path("quads", i), key);
+  return "";
+}
+
 Scene load_project(const fs::path& file) {
   const std::string label = file.string();
   std::error_code ec;
@@ -495,8 +585,7 @@ Scene load_project(const fs::path& file) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw ProjectError(label, "", "cannot read the file");
   try {
-    return scene_from_json(json_fields::parse_text(text, label), label,
-                           fs::absolute(file).parent_path(), true);
+    return load_project_text(text, label, fs::absolute(file).parent_path(), true);
   } catch (const ProjectError&) {
     throw;
   } catch (const std::exception& e) {  // a safety net: nothing else escapes as another type
@@ -510,7 +599,14 @@ void save_project(const Scene& scene, const fs::path& file) {
   tmp += ".tmp";
   std::string text, error;
   try {
-    text = project_file_text(rebase_asset_paths(scene, fs::absolute(file).parent_path()));
+    const Scene rebased = rebase_asset_paths(scene, fs::absolute(file).parent_path());
+    // JSON text is UTF-8: a path from a folder named in another encoding cannot be stored.
+    if (const std::string bad = first_non_utf8_string(rebased); !bad.empty())
+      throw ProjectError(label, bad, "is not valid UTF-8, which a JSON file cannot hold "
+                                     "(rename the file or folder)");
+    text = project_file_text(rebased);
+  } catch (const ProjectError&) {
+    throw;
   } catch (const std::exception& e) {  // invalid UTF-8 in a name, or a filesystem error
     throw ProjectError(label, "", std::string("cannot write the scene: ") + e.what());
   }

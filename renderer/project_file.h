@@ -2,7 +2,9 @@
 // atomically (temporary file renamed over the old one), exact round trip.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,9 +25,29 @@ struct ProjectError : std::runtime_error {
   std::string problem;
 };
 
+// Limits of a project, checked on load and by validate_scene (DESIGN.md §3 leaves them open).
+//  - Film: at most kMaxFilmSide pixels per side (the GL_MAX_TEXTURE_SIZE of llvmpipe and common
+//    GPUs) and kMaxFilmPixels in all. The renderer keeps kFilmBytesPerPixel of GPU memory per
+//    pixel (two RGBA32F accumulation textures and an RGBA8 display texture), so the largest film
+//    takes 2.25 GiB; a larger one is refused with its memory estimate, never attempted.
+//  - Spheres and quads: at most kMaxSpheres and kMaxQuads each (2^20; 10^6 spheres load). Their
+//    std430 arrays (32 and 128 bytes an element) then stay within 128 MiB, the smallest
+//    GL_MAX_SHADER_STORAGE_BLOCK_SIZE that OpenGL 4.5 allows. A longer array is refused before
+//    any of its elements is read.
+constexpr int kMaxFilmSide = 16384;
+constexpr int64_t kMaxFilmPixels = int64_t(1) << 26;  // e.g. 8192 x 8192
+constexpr int kFilmBytesPerPixel = 2 * 16 + 4;
+constexpr size_t kMaxSpheres = size_t(1) << 20;
+constexpr size_t kMaxQuads = size_t(1) << 20;
+
 // Reads, parses and validates; throws ProjectError on the first problem. Never returns a
 // half-loaded scene. The returned scene's base_dir is the file's folder.
 Scene load_project(const std::filesystem::path& file);
+
+// The same from the text of a project file (the fuzz target's entry point): `file_label` names
+// it in errors and base_dir resolves its asset paths.
+Scene load_project_text(const std::string& text, const std::string& file_label,
+                        const std::filesystem::path& base_dir, bool check_files = true);
 
 // Parses a JSON document as a scene (unknown keys, wrong types, bad values are errors).
 // `file_label` only names the source in errors. Image files are checked for existence and
@@ -59,10 +81,19 @@ Scene rebase_asset_paths(const Scene& scene, const std::filesystem::path& new_ba
 // distance between two corners); camera.up is parallel when |sin| of its angle <= 1e-6.
 std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files = true);
 
+// The problem with a width x height film (file name empty; JSON path film.width, film.height or
+// film), or nullopt when it is within the limits above. Sizes too large say how much GPU memory
+// they would take: "film.width: must be an integer in [1, 16384] (got 100000); a 100000x100000
+// film would need 335.3 GiB of GPU buffers (36 bytes per pixel), the limit is 2.25 GiB
+// (67108864 pixels, e.g. 8192x8192)".
+std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
+
 // Writes atomically: FILE.tmp beside the target, fsync, then rename over the target. Relative
 // asset paths are rewritten relative to the new file's folder when it differs from
 // scene.base_dir. Does not validate (the UI validates edits; the loader reports anything bad).
-// Throws ProjectError (with the file name) on IO failure; no FILE.tmp is left behind.
+// Throws ProjectError (with the file name) on IO failure, and with the JSON path of a string
+// that is not valid UTF-8 (a texture path in a folder named in another encoding: JSON text
+// cannot hold it); no FILE.tmp is left behind.
 void save_project(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace glint

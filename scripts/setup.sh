@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev libtinyexr-dev libgtest-dev
   libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libegl1
   xvfb xauth
+  clang   # libFuzzer targets and the sanitizer preset (scripts/fuzz.sh, CMakePresets.json)
 )
 
 missing=()
@@ -30,5 +31,16 @@ if ! command -v cargo >/dev/null 2>&1 && [ ! -x "$HOME/.cargo/bin/cargo" ]; then
   sudo_cmd=()
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends cargo
+fi
+# libFuzzer and the sanitizer runtimes: a package of their own from LLVM 14 on Debian 12
+# (libclang-rt-N-dev); older Ubuntu ships them inside clang's libclang-common-N-dev.
+clang_major=$(clang --version | sed -n 's/.*clang version \([0-9]*\).*/\1/p' | head -n1)
+rt="libclang-rt-${clang_major}-dev"
+if apt-cache show "$rt" >/dev/null 2>&1 &&
+   ! dpkg-query -W -f='${Status}' "$rt" 2>/dev/null | grep -q "install ok installed"; then
+  echo "setup: installing $rt" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "$rt"
 fi
 echo "setup: all dependencies present" >&2

@@ -1,0 +1,27 @@
+// libFuzzer target: bytes through the image readers (PNG, JPEG and Radiance HDR via stb_image,
+// OpenEXR via tinyexr, told apart by signature). Any input must either decode to an image that
+// agrees with its header probe or throw ImageError.
+#include <cstdint>
+#include <cstdlib>
+#include <vector>
+
+#include "renderer/image.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::vector<unsigned char> bytes(data, data + size);
+  glint::ImageInfo info;
+  try {
+    info = glint::probe_image_data(bytes, "fuzz");
+  } catch (const glint::ImageError&) {
+    info = {};
+  }
+  try {
+    const glint::Image image = glint::load_image_data(bytes, "fuzz", glint::ColorEncoding::srgb);
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != size_t(image.width) * image.height * 4)
+      std::abort();
+    if (info.width != 0 && (info.width != image.width || info.height != image.height)) std::abort();
+  } catch (const glint::ImageError&) {
+  }
+  return 0;
+}
