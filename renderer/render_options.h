@@ -11,7 +11,7 @@ struct RenderOptions {
   bool light_sampling = true;        // next-event estimation + MIS for emitting spheres and quads
   bool environment_sampling = true;  // ... and for an environment map (importance-sampled)
   bool russian_roulette = true;      // unbiased path termination after a few bounces
-  SamplerKind sampler = SamplerKind::sobol;
+  SamplerKind sampler = SamplerKind::pcg;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
   bool operator==(const RenderOptions&) const = default;
 };
