@@ -63,7 +63,7 @@ def markdown(ablation, cfg):
          "switched on one after another. The number is the efficiency (1 / (relMSE x time)) "
          "relative to the first row: the factor by which relMSE at equal time is lower. "
          "The GGX visible-normal sampling cannot be switched off (it replaced the old sampler); "
-         "its effect is in the before/after table below and in tests/unit/shader_vndf_test.cpp.\n"]
+         "its effect is in the before/after table above and in tests/unit/shader_vndf_test.cpp.\n"]
     names = list(ablation)
     L.append("| technique | " + " | ".join(names) + " |")
     L.append("|---|" + "---|" * len(names))
