@@ -93,6 +93,14 @@ long parse_integer(const std::string& option, const std::string& text, long lo, 
   return v;
 }
 
+double parse_positive(const std::string& option, const std::string& text, const char* what) {
+  char* end = nullptr;
+  double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v <= 0)
+    throw UsageError{option + " expects a positive " + what + ", got '" + text + "'"};
+  return v;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 0; i < argc; ++i) {
@@ -103,14 +111,8 @@ Options parse(int argc, char** argv) {
     };
     if (a == "-o" || a == "--output") o.output = value();
     else if (a == "--spp") o.spp = parse_integer(a, value(), 1, 1L << 30);
-    else if (a == "--time") {
-      std::string v = value();
-      char* end = nullptr;
-      double s = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end != '\0' || !std::isfinite(s) || s <= 0)
-        throw UsageError{"--time expects a positive number of seconds, got '" + v + "'"};
-      o.seconds = s;
-    } else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
+    else if (a == "--time") o.seconds = parse_positive(a, value(), "number of seconds");
+    else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
     else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
     else if (a == "--reference") o.reference = value();
@@ -123,14 +125,7 @@ Options parse(int argc, char** argv) {
     } else if (a == "--no-light-sampling") o.estimator.light_sampling = false;
     else if (a == "--no-env-sampling") o.estimator.environment_sampling = false;
     else if (a == "--no-roulette") o.estimator.russian_roulette = false;
-    else if (a == "--clamp") {
-      std::string v = value();
-      char* end = nullptr;
-      double c = std::strtod(v.c_str(), &end);
-      if (v.empty() || *end != '\0' || !std::isfinite(c) || c <= 0)
-        throw UsageError{"--clamp expects a positive luminance, got '" + v + "'"};
-      o.estimator.clamp = static_cast<float>(c);
-    }
+    else if (a == "--clamp") o.estimator.clamp = static_cast<float>(parse_positive(a, value(), "luminance"));
     else if (a == "--generic-shader") o.generic_shader = true;
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
     else if (o.project.empty()) o.project = a;
