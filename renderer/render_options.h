@@ -1,6 +1,8 @@
 // How the renderer estimates an image, as opposed to what the scene is: these are not saved in
-// projects. The defaults are unbiased and the fastest to converge; the switches exist so that
-// the bench can measure each technique (bench/RESULTS.md) and users can trade bias for noise.
+// projects. The defaults are unbiased and use independent random numbers (PCG, so error bars
+// from seed spreads hold; Sobol converges faster on some scenes, see bench/RESULTS.md). The
+// switches exist so that the bench can measure each technique and users can trade bias for
+// noise.
 #pragma once
 
 namespace glint {
