@@ -247,6 +247,11 @@ int run_render_command(int argc, char** argv) {
       std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
     renderer.sync(scene, width, height);
     renderer.prepare_specialised_program();
+    if (renderer.exceeds_llvmpipe_loop_limit() && gl_renderer_name().find("llvmpipe") != std::string::npos)
+      std::fprintf(stderr,
+                   "warning: %s has too many shapes for Mesa's llvmpipe, which stops a shader's loops "
+                   "after 65535 iterations: parts of this image will be wrong (use a GPU)\n",
+                   o.project.c_str());
 
     const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);
     const bool interactive = isatty(STDERR_FILENO);

@@ -7,6 +7,7 @@
 #include "renderer/camera_frame.h"
 #include "renderer/environment_distribution.h"
 #include "renderer/gl_program.h"
+#include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
 
 namespace glint {
@@ -39,22 +40,6 @@ GLuint make_framebuffer(GLuint texture) {
   if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("incomplete framebuffer for the render target");
   return fbo;
-}
-
-// Mesa's llvmpipe ends every loop of a shader invocation once all its loops together have run
-// 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop"): a pass of many
-// samples then silently skips intersection tests and returns garbage or NaN (the default
-// project at 16x16 in one pass of 1000 samples: 28% of samples non-finite; in passes of 100:
-// none). So a pass draws at most samples_per_draw_ samples per fragment, estimated from the
-// loops one sample runs (a bound, not a count: see samples_per_draw), and trace(k) issues as
-// many draws as it needs. Other drivers have no such limit; the draws cost them nothing
-// noticeable either.
-int samples_per_draw(long shapes, int max_bounces) {
-  // Per bounce: the closest-hit loops of the path ray and of a shadow ray (with a few
-  // pass-throughs), the light and environment binary searches, the BSDF and light code.
-  const long per_bounce = 3 * (shapes + 2) + 64;
-  const long per_sample = (max_bounces + 2L) * per_bounce;
-  return static_cast<int>(std::clamp(16384L / std::max(per_sample, 1L), 1L, 64L));
 }
 
 }  // namespace
@@ -216,6 +201,8 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.env_rotation = glm::radians(env.rotation_deg);
   u.max_bounces = scene.render.max_bounces;
   samples_per_draw_ = samples_per_draw(shape_count_, scene.render.max_bounces);
+  exceeds_loop_limit_ =
+      loop_iterations_per_sample(shape_count_, scene.render.max_bounces) > kLlvmpipeLoopLimit;
   u.light_count = options_.light_sampling ? light_count_ : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are
   // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted

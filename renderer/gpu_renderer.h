@@ -79,6 +79,9 @@ class GpuRenderer {
   // GPU time of the trace passes since the accumulation was last reset, from GL_TIMESTAMP
   // queries around each pass. Waits for passes still in flight; trace() itself never waits.
   double trace_gpu_seconds();
+  // One sample of the synced scene may run more loop iterations than Mesa's llvmpipe allows
+  // a shader invocation (renderer/loop_budget.h): on llvmpipe its image would be wrong.
+  bool exceeds_llvmpipe_loop_limit() const { return exceeds_loop_limit_; }
   int width() const { return width_; }
   int height() const { return height_; }
   GLuint display_texture() const { return display_texture_; }
@@ -157,7 +160,8 @@ class GpuRenderer {
   RenderOptions synced_options_;
   int light_count_ = 0;
   long shape_count_ = 0;
-  int samples_per_draw_ = 1;  // samples one draw adds per pixel (llvmpipe's loop limit)
+  int samples_per_draw_ = 1;  // samples one draw adds per pixel (loop_budget.h)
+  bool exceeds_loop_limit_ = false;
   std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;
