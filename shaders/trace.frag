@@ -209,8 +209,10 @@ SurfaceMaterial surface_material(GpuMaterial gm, vec4 color_tex, vec2 uv) {
 // makes the same choices at random, so shadow rays and BSDF paths agree in expectation.
 vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float coverage, float cos_theta) {
   vec3 t = vec3(1.0 - coverage);
+  // Most blockers are opaque: only glass needs its roughness (a texture fetch) looked up.
+  if (int(gm.color.a) != MATERIAL_TRANSPARENT) return t;
   SurfaceMaterial m = surface_material(gm, color_tex, uv);
-  if (m.type == MATERIAL_TRANSPARENT && is_delta_material(m)) {
+  if (is_delta_material(m)) {
     t += coverage * (1.0 - fresnel_schlick(dielectric_f0(m.ior), cos_theta)) * m.color;
   }
   return t;
