@@ -18,6 +18,7 @@
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
 #include "renderer/image.h"
+#include "renderer/program_worker.h"
 
 #ifndef GLINT_SOURCE_DIR
 #define GLINT_SOURCE_DIR ""
@@ -155,6 +156,13 @@ int run_editor(const EditorOptions& options) {
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(screenshot_mode ? 0 : 1);
+  // A hidden window whose context shares the main one's objects, for the thread that builds
+  // specialised trace programs (renderer/program_worker.h). Without it they are built here.
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  GLFWwindow* worker_window = glfwCreateWindow(1, 1, "Glint shader worker", nullptr, window);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+  if (!worker_window)
+    std::fprintf(stderr, "glint: no second OpenGL context; shader variants compile on the UI thread\n");
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -188,9 +196,15 @@ int run_editor(const EditorOptions& options) {
     }
     Autosave autosave({}, 30);
 
+    if (worker_window)
+      state.shader_worker = std::make_shared<ProgramWorker>(SharedContextHooks{
+          [worker_window] { glfwMakeContextCurrent(worker_window); },
+          [] { glfwMakeContextCurrent(nullptr); }});
     std::unique_ptr<ViewportRenderer> viewport;
     try {
-      viewport = std::make_unique<ViewportRenderer>();
+      GpuRendererOptions renderer_options;
+      renderer_options.worker = state.shader_worker;
+      viewport = std::make_unique<ViewportRenderer>(renderer_options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "glint: %s\n", e.what());
       exit_code = 1;
@@ -273,10 +287,12 @@ int run_editor(const EditorOptions& options) {
     state.thumbnails.clear();
     state.export_job.reset();
     viewport.reset();
+    state.shader_worker.reset();  // joins the thread before its window goes
   }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  if (worker_window) glfwDestroyWindow(worker_window);
   glfwDestroyWindow(window);
   glfwTerminate();
   return exit_code;

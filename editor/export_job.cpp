@@ -32,13 +32,15 @@ std::string validate_export_settings(const ExportSettings& s) {
   return "";
 }
 
-ExportJob::ExportJob(const Scene& scene, ExportSettings settings)
+ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker)
     : scene_(scene), settings_(std::move(settings)) {
   if (std::string problem = validate_export_settings(settings_); !problem.empty())
     throw std::runtime_error(problem);
   auto errors = validate_scene(scene_);
   if (!errors.empty()) throw std::runtime_error(errors.front().what());
-  renderer_ = std::make_unique<GpuRenderer>();
+  GpuRendererOptions options;
+  options.worker = std::move(worker);
+  renderer_ = std::make_unique<GpuRenderer>(options);
   renderer_->set_options(settings_.estimator);
   renderer_->sync(scene_, settings_.width, settings_.height);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

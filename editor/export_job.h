@@ -14,6 +14,7 @@
 namespace glint {
 
 class GpuRenderer;
+class ProgramWorker;
 
 struct ExportSettings {
   int width = 960;
@@ -33,7 +34,8 @@ class ExportJob {
   enum class State { running, done, cancelled, failed };
 
   // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting.
-  ExportJob(const Scene& scene, ExportSettings settings);
+  // `worker` (may be null) builds the specialised trace program off the UI thread.
+  ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker = nullptr);
   ~ExportJob();
   ExportJob(const ExportJob&) = delete;
   ExportJob& operator=(const ExportJob&) = delete;

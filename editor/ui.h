@@ -24,6 +24,8 @@
 
 namespace glint {
 
+class ProgramWorker;
+
 // What a chosen file is for (native dialog or the typed-path prompt).
 enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output };
 // Actions behind the unsaved-changes guard.
@@ -53,6 +55,9 @@ struct EditorState {
   ViewportResolution resolution = ViewportResolution::automatic;
   // How the viewport and exports sample (not saved in the project; see render_options.h).
   RenderOptions estimator;
+  // Builds specialised trace programs off the UI thread for the viewport and exports (null:
+  // they are built on the UI thread; see renderer/program_worker.h).
+  std::shared_ptr<ProgramWorker> shader_worker;
 
   // Viewport tools and drags.
   bool focus_tool = false;   // a click sets the focus distance instead of selecting

@@ -17,7 +17,7 @@ double since(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-ViewportRenderer::ViewportRenderer() {}
+ViewportRenderer::ViewportRenderer(GpuRendererOptions options) : renderer_(std::move(options)) {}
 
 void ViewportRenderer::render(Document& doc, EditorState& state) {
   auto now = std::chrono::steady_clock::now();

@@ -14,7 +14,8 @@ namespace glint {
 
 class ViewportRenderer {
  public:
-  ViewportRenderer();  // needs a current OpenGL 4.5 context
+  // Needs a current OpenGL 4.5 context.
+  explicit ViewportRenderer(GpuRendererOptions options = {});
 
   // The render_viewport hook of EditorState. Leaves the default framebuffer bound with the
   // viewport set to framebuffer_size (what ImGui's renderer expects afterwards).

@@ -9,6 +9,19 @@
 namespace glint {
 namespace {
 
+// 4.5 exactly: Mesa refuses 4.6 on llvmpipe.
+const EGLint kContextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+
+EGLConfig choose_config(EGLDisplay display) {
+  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  EGLConfig config = nullptr;
+  EGLint count = 0;
+  if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) return nullptr;
+  return config;
+}
+
 // Tries to create and bind a 4.5 core context on `display`; returns the context or null.
 EGLContext make_context(EGLDisplay display, std::string& why) {
   EGLint major = 0, minor = 0;
@@ -21,10 +34,8 @@ EGLContext make_context(EGLDisplay display, std::string& why) {
     eglTerminate(display);
     return EGL_NO_CONTEXT;
   }
-  const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
-  EGLConfig config = nullptr;
-  EGLint count = 0;
-  if (!eglChooseConfig(display, config_attribs, &config, 1, &count) || count == 0) {
+  EGLConfig config = choose_config(display);
+  if (!config) {
     // Some device displays offer no configs; contexts without one still work there.
     if (!epoxy_has_egl_extension(display, "EGL_KHR_no_config_context")) {
       why = "no OpenGL-renderable EGL config";
@@ -33,11 +44,7 @@ EGLContext make_context(EGLDisplay display, std::string& why) {
     }
     config = EGL_NO_CONFIG_KHR;
   }
-  // 4.5 exactly: Mesa refuses 4.6 on llvmpipe.
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, kContextAttribs);
   if (context == EGL_NO_CONTEXT) {
     why = "no OpenGL 4.5 core context (EGL error " + std::to_string(eglGetError()) + ")";
     eglTerminate(display);
@@ -96,12 +103,43 @@ std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create() {
   throw std::runtime_error("cannot create a headless OpenGL 4.5 core context:\n" + errors);
 }
 
+std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create_shared() const {
+  EGLConfig config = choose_config(display_);
+  EGLContext context = eglCreateContext(display_, config ? config : EGL_NO_CONFIG_KHR,
+                                        static_cast<EGLContext>(context_), kContextAttribs);
+  if (context == EGL_NO_CONTEXT)
+    throw std::runtime_error("cannot create a shared OpenGL context (EGL error " +
+                             std::to_string(eglGetError()) + ")");
+  std::unique_ptr<HeadlessGLContext> shared(new HeadlessGLContext());
+  shared->display_ = display_;
+  shared->context_ = context;
+  shared->owns_display_ = false;
+  shared->platform_ = platform_;
+  return shared;
+}
+
+void HeadlessGLContext::make_current() const {
+  if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, static_cast<EGLContext>(context_)))
+    throw std::runtime_error("cannot make an OpenGL context current (EGL error " +
+                             std::to_string(eglGetError()) + ")");
+}
+
+void HeadlessGLContext::release_current() const {
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 HeadlessGLContext::~HeadlessGLContext() {
-  if (display_) {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    if (context_) eglDestroyContext(display_, context_);
-    eglTerminate(display_);
+  if (!display_) return;
+  if (!owns_display_) {
+    // Unbinds it only if it is current on this thread; a context current elsewhere is freed
+    // by EGL once released there.
+    if (eglGetCurrentContext() == static_cast<EGLContext>(context_)) release_current();
+    eglDestroyContext(display_, static_cast<EGLContext>(context_));
+    return;
   }
+  eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  if (context_) eglDestroyContext(display_, context_);
+  eglTerminate(display_);
 }
 
 std::string gl_renderer_name() {

@@ -19,10 +19,20 @@ class HeadlessGLContext {
 
   const std::string& platform() const { return platform_; }  // "EGL device" or "surfaceless"
 
+  // A second context on the same display that shares this one's objects (programs, buffers,
+  // textures; not framebuffers or vertex arrays), for work on another thread. Not current
+  // anywhere; it must be destroyed before this one. Throws std::runtime_error.
+  std::unique_ptr<HeadlessGLContext> create_shared() const;
+  // Binds this context to the calling thread (or unbinds whatever is bound there); throws
+  // std::runtime_error if EGL refuses.
+  void make_current() const;
+  void release_current() const;
+
  private:
   HeadlessGLContext() = default;
   void* display_ = nullptr;
   void* context_ = nullptr;
+  bool owns_display_ = true;  // a shared context leaves eglTerminate to its parent
   std::string platform_;
 };
 

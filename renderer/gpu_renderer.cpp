@@ -1,6 +1,8 @@
 #include "renderer/gpu_renderer.h"
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <stdexcept>
 #include <vector>
 
@@ -9,6 +11,7 @@
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
+#include "renderer/program_worker.h"
 
 namespace glint {
 namespace {
@@ -227,8 +230,7 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
 
 // Every pass: the programs do not share uniform state, and a pass may use a different one than
 // the last. A score of glProgramUniform calls is nothing next to a trace pass.
-void GpuRenderer::apply_trace_uniforms(GlProgram& p) {
-  const TraceUniforms& u = uniforms_;
+void GpuRenderer::apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_env_color", u.env_color);
   p.set("u_env_textured", u.env_textured);
   p.set("u_env_rotation", u.env_rotation);
@@ -258,19 +260,11 @@ void GpuRenderer::apply_trace_uniforms(GlProgram& p) {
 GlProgram& GpuRenderer::choose_trace_program() {
   last_pass_defines_.clear();
   if (renderer_options_.force_generic_shader) return *trace_program_;
-  const std::string wanted = shader_defines(features_);
+  const std::string wanted = variant_defines();
   if (wanted.empty()) return *trace_program_;
   auto best = variants_.end();
   for (auto it = variants_.begin(); it != variants_.end(); ++it) {
-    if (!it->ready && !it->failed && it->program->ready()) {
-      try {
-        it->program->finish();
-        it->ready = true;
-      } catch (const std::exception&) {
-        // Kept, so that it is not compiled again; the generic program renders this scene.
-        it->failed = true;
-      }
-    }
+    poll_variant(*it);
     if (!it->ready || it->failed || !covers(it->features, features_)) continue;
     if (it->defines == wanted) {
       best = it;
@@ -284,23 +278,77 @@ GlProgram& GpuRenderer::choose_trace_program() {
   return *best->program;
 }
 
+std::string GpuRenderer::variant_defines() const {
+  std::string defines = shader_defines(features_);
+  return defines.empty() ? defines : defines + renderer_options_.extra_defines;
+}
+
+void GpuRenderer::poll_variant(Variant& v) {
+  if (v.ready || v.failed) return;
+  if (v.job) {
+    if (!v.job->done()) return;
+    v.program = std::move(v.job->program);
+    v.failed = !v.program;  // kept, so that it is not built again; the generic program renders
+    v.ready = !v.failed;
+    v.job.reset();
+    return;
+  }
+  if (!v.program->ready()) return;
+  try {
+    v.program->finish();
+    v.ready = true;
+  } catch (const std::exception&) {
+    v.failed = true;
+  }
+}
+
 void GpuRenderer::prepare_specialised_program() {
   start_variant_if_missing();
   for (Variant& v : variants_)
-    if (v.defines == shader_defines(features_) && !v.ready && !v.failed) {
-      try {
-        v.program->finish();
-        v.ready = true;
-      } catch (const std::exception&) {
-        v.failed = true;
+    if (v.defines == variant_defines()) {
+      while (v.job && !v.job->done()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (!v.job && !v.ready && !v.failed) {
+        try {
+          v.program->finish();
+          v.ready = true;
+        } catch (const std::exception&) {
+          v.failed = true;
+        }
       }
+      poll_variant(v);
     }
   warm_up_trace_program();
 }
 
+// A job for the worker: link the variant, then draw one pixel with it in the state a trace pass
+// draws in (an RGBA32F target; this renderer's textures on units 0-2 and buffers on 0-5, whose
+// formats and sampling enter the compiled code's key), so that the driver compiles there the
+// code this renderer's first pass will look up. The names are captured now; should the renderer
+// replace a texture meanwhile, the driver compiles again at that first pass (only slower).
+std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& defines) {
+  auto job = std::make_shared<ProgramJob>();
+  job->vertex = "fullscreen.vert";
+  job->fragment = "trace.frag";
+  job->defines = defines;
+  const TraceUniforms uniforms = uniforms_;
+  const GLuint textures[3] = {accumulation_[current_], texture_array_, environment_texture_};
+  std::vector<GLuint> buffers(buffers_, buffers_ + 6);
+  job->warm_up = [uniforms, textures, buffers](GlProgram& p) {
+    apply_trace_uniforms(p, uniforms);
+    p.set("u_resolution", glm::ivec2(1, 1));
+    p.set("u_samples_before", 0u);
+    p.set("u_samples_per_pass", 0);
+    for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+    for (GLuint i = 0; i < 3; ++i) glBindTextureUnit(i, textures[i]);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  };
+  renderer_options_.worker->submit(job);
+  return job;
+}
+
 void GpuRenderer::start_variant_if_missing() {
   if (renderer_options_.force_generic_shader) return;
-  std::string wanted = shader_defines(features_);
+  std::string wanted = variant_defines();
   if (wanted.empty()) return;
   for (const Variant& v : variants_)
     if (v.defines == wanted) return;
@@ -309,7 +357,10 @@ void GpuRenderer::start_variant_if_missing() {
   Variant v;
   v.features = features_;
   v.defines = wanted;
-  v.program = GlProgram::start("fullscreen.vert", "trace.frag", wanted);
+  if (renderer_options_.worker)
+    v.job = submit_variant_job(wanted);
+  else
+    v.program = GlProgram::start("fullscreen.vert", "trace.frag", wanted);
   variants_.push_back(std::move(v));
 }
 
@@ -317,7 +368,7 @@ void GpuRenderer::start_variant_if_missing() {
 // accumulation buffer.
 GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   GlProgram& p = choose_trace_program();
-  apply_trace_uniforms(p);
+  apply_trace_uniforms(p, uniforms_);
   p.set("u_resolution", glm::ivec2(width_, height_));
   p.set("u_samples_before", static_cast<unsigned>(samples_));
   p.set("u_samples_per_pass", samples);

@@ -29,9 +29,19 @@ struct SyncResult {
   bool display_changed = false;     // exposure or tonemap changed (no reset on its own)
 };
 
+class ProgramWorker;
+struct ProgramJob;
+
 struct GpuRendererOptions {
   // Always trace with the generic program (every feature compiled in): for measurements.
   bool force_generic_shader = false;
+  // Where specialised programs are built (renderer/program_worker.h): off the calling thread,
+  // in a shared context, with the driver's first-draw compile done there too. Without one they
+  // are built in this context with GL_KHR_parallel_shader_compile where the driver has it.
+  std::shared_ptr<ProgramWorker> worker;
+  // Appended to every specialised program's defines. Tests put a nonce here, so that the
+  // driver's shader cache has never seen the program and its compile is really timed.
+  std::string extra_defines;
 };
 
 class GpuRenderer {
@@ -54,9 +64,10 @@ class GpuRenderer {
 
   // Adds `samples` samples to every pixel in one pass, with the specialised program for the
   // scene's features if it is compiled, otherwise with the generic one. A pass that finds no
-  // program for the current features issues its compile after the pass (non-blocking where
-  // the driver compiles in parallel); later passes switch to it once GL_COMPLETION_STATUS
-  // says it is ready. Both programs draw the same random numbers and give the same image.
+  // program for the current features issues its compile after the pass: on the worker if
+  // there is one, else here (non-blocking where the driver compiles in parallel); later passes
+  // switch to it once it is ready. Both programs draw the same random numbers and give the
+  // same image.
   void trace(int samples);
 
   // For batch renders (`glint render`): compiles the program specialised to the synced scene
@@ -66,7 +77,7 @@ class GpuRenderer {
   void prepare_specialised_program();
 
   // What the synced scene needs, and the defines of the program that ran the last trace pass
-  // ("" for the generic program; shader_defines(features()) once specialised).
+  // ("" for the generic program; shader_defines(features()) + extra_defines once specialised).
   const ShaderFeatures& features() const { return features_; }
   const std::string& last_pass_defines() const { return last_pass_defines_; }
   bool last_pass_generic() const { return last_pass_defines_.empty(); }
@@ -97,7 +108,10 @@ class GpuRenderer {
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
-  void apply_trace_uniforms(GlProgram& p);
+  struct TraceUniforms;
+  static void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u);
+  std::shared_ptr<ProgramJob> submit_variant_job(const std::string& defines);
+  std::string variant_defines() const;  // the cache key of the synced scene's variant
   GlProgram& choose_trace_program();
   void start_variant_if_missing();
   void collect_trace_timers(bool wait);
@@ -109,10 +123,13 @@ class GpuRenderer {
     ShaderFeatures features;
     std::string defines;  // the cache key
     std::unique_ptr<GlProgram> program;
+    std::shared_ptr<ProgramJob> job;  // while the worker builds it
     bool ready = false;
     bool failed = false;  // compile or link error: the generic program is used instead
   };
   static constexpr size_t kMaxVariants = 4;
+  // Marks v ready or failed once its build has finished; never waits.
+  static void poll_variant(Variant& v);
 
   GpuRendererOptions renderer_options_;
   std::unique_ptr<GlProgram> trace_program_;  // the generic one
@@ -136,7 +153,8 @@ class GpuRenderer {
     int quad_count = 0;
     glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};
     float cam_tan_half_vfov = 0, cam_aspect = 1, cam_aperture = 0, cam_focus = 1;
-  } uniforms_;
+  };
+  TraceUniforms uniforms_;
   std::unique_ptr<GlProgram> tonemap_program_;
   GLuint vao_ = 0;
   GLuint accumulation_[2] = {0, 0};

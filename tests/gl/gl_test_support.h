@@ -13,8 +13,10 @@
 
 namespace glint::test {
 
-inline void ensure_gl_context() {
+// The process's context, created and made current on first use.
+inline HeadlessGLContext& ensure_gl_context() {
   static std::unique_ptr<HeadlessGLContext> context = HeadlessGLContext::create();
+  return *context;
 }
 
 // A camera looking down -Z at the origin from z = 5, with a black environment.

@@ -1,0 +1,86 @@
+// Compiles programs on a second thread, in an OpenGL context that shares objects with the
+// renderer's, and draws one pixel with each there.
+//
+// Why: Mesa's llvmpipe links synchronously inside glLinkProgram (45-55 ms for a trace variant)
+// although it advertises GL_KHR_parallel_shader_compile, and it JIT-compiles the shader at the
+// first draw that uses it (0.6-1.0 s cold). Either, on the editor's thread, freezes the UI after
+// a structural edit. Done here, the link and the first-draw compile happen off the UI thread;
+// llvmpipe keeps the compiled code in its shader cache, so the renderer's own first draw with
+// the program then takes milliseconds (measured in README, "Specialised trace programs").
+//
+// The renderer knows nothing of windows: whoever owns the contexts (the editor's GLFW windows,
+// or HeadlessGLContext::create_shared in tests) passes how to bind the shared one.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <epoxy/gl.h>
+
+namespace glint {
+
+class GlProgram;
+
+struct SharedContextHooks {
+  std::function<void()> make_current;  // called once on the worker thread before any job
+  std::function<void()> release;       // called once on the worker thread when it ends
+};
+
+// One program to build. `warm_up` runs on the worker thread with the linked program, the
+// worker's context current and its own 1x1 RGBA32F framebuffer and vertex array bound: it sets
+// what the draw needs (uniforms, textures, buffers) and draws, so that the driver compiles the
+// variant of the program for the state the renderer will draw with.
+struct ProgramJob {
+  std::string vertex, fragment, defines;
+  std::function<void(GlProgram&)> warm_up;
+
+  // Set by the worker; read them only once done() is true.
+  bool done() const { return done_.load(std::memory_order_acquire); }
+  std::unique_ptr<GlProgram> program;  // null if the build failed
+  std::string error;                   // the driver's log when it failed
+  double seconds = 0;                  // link and warm-up, wall clock on the worker
+  int probes = 0;                      // copies drawn until the driver's cache had the code
+
+ private:
+  friend class ProgramWorker;
+  std::atomic<bool> done_{false};
+};
+
+class ProgramWorker {
+ public:
+  explicit ProgramWorker(SharedContextHooks context);
+  // Finishes the job in progress and drops the queued ones (they never become done).
+  ~ProgramWorker();
+  ProgramWorker(const ProgramWorker&) = delete;
+  ProgramWorker& operator=(const ProgramWorker&) = delete;
+
+  // Queues the job (jobs run one at a time, oldest first). A caller that loses interest just
+  // drops its pointer; the program is then deleted on the worker.
+  void submit(std::shared_ptr<ProgramJob> job);
+
+  // False if the worker thread could not bind its context (then jobs fail with that error).
+  bool healthy() const { return healthy_.load(); }
+
+ private:
+  void run();
+  void build(ProgramJob& job);
+  double draw_once(ProgramJob& job, GlProgram& program);
+
+  SharedContextHooks context_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::shared_ptr<ProgramJob>> queue_;
+  bool stopping_ = false;
+  std::atomic<bool> healthy_{true};
+  std::string context_error_;
+  GLuint vao_ = 0, target_ = 0, fbo_ = 0;  // the worker context's own (not shared) objects
+  std::thread thread_;
+};
+
+}  // namespace glint
