@@ -1,0 +1,97 @@
+// The CI-sized soak (tests/soak/soak.h; the long run is bench/SOAK.md): the Cornell box at 8x8,
+// 700 frames of edits and 2000 frames of accumulation with the editor's per-frame calls.
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include "tests/gl/gl_test_support.h"
+#include "tests/soak/soak.h"
+
+namespace glint {
+namespace {
+
+using soak::SoakConfig;
+using soak::SoakReport;
+
+SoakConfig ci_config() {
+  SoakConfig c;
+  c.project = GLINT_SOURCE_DIR "/projects/cornell_box.glint";
+  c.width = c.height = 8;
+  c.frames = 2000;
+  c.spp = 1;
+  c.checkpoints = 4;
+  c.warmup_frames = 200;
+  c.edit_frames = 500;
+  c.exposure_every = 7;
+  c.readback_every = 250;
+  c.reference_batches = 50;
+  c.reference_spp = 40;
+  c.k_sigma = 4;
+  c.paired_spp = 1000;
+  return c;
+}
+
+// Every edit restarts, no exposure change does; GL objects equal and RSS within
+// rss_growth_bound_kib (1 MiB) from frame 200 to the end; the accumulated mean within 4
+// standard errors of the independent reference at each checkpoint, at the wrap of the
+// sample-stream index and after it, for the whole image and each quadrant; and the 2000
+// one-sample passes within 1e-4 (relative) of the same samples in passes of 1000.
+TEST(Soak, NoGrowthNoDrift) {
+  test::ensure_gl_context();
+  const SoakConfig c = ci_config();
+  SoakReport rep = soak::run_soak(c);
+  std::fputs(soak::format_report(c, rep).c_str(), stdout);
+  ASSERT_EQ(rep.memory.size(), 3u);
+  EXPECT_EQ(rep.edits, c.warmup_frames + c.edit_frames - 1);
+  EXPECT_EQ(rep.final_samples, c.frames * c.spp);
+  EXPECT_GT(rep.exposure_changes, 200);
+  EXPECT_GT(rep.wrap_sample, 0);
+  EXPECT_LT(rep.wrap_sample, rep.final_samples);
+  ASSERT_EQ(rep.comparisons.size(), size_t(c.checkpoints + 2));  // + the wrap checkpoint, + after it
+  for (const std::string& f : soak::failures(c, rep)) ADD_FAILURE() << f;
+}
+
+// The checks can fail: a GL buffer left behind every frame after warm-up and 16 KiB of touched
+// heap per frame (11 MiB over about 700 frames; RSS and the heap in use, above their bounds of 1 MiB and 64 KiB) are both reported.
+TEST(Soak, PlantedLeaksAreCaught) {
+  test::ensure_gl_context();
+  SoakConfig c = ci_config();
+  c.frames = 200;
+  c.edit_frames = 500;
+  c.reference_batches = 4;
+  c.reference_spp = 4;
+  c.paired_spp = 0;
+  c.k_sigma = 100;  // a smoke-sized reference: only the leaks are under test here
+  std::vector<GLuint> buffers;
+  std::vector<std::vector<char>> heap;
+  bool warmed_up = false;
+  c.after_frame = [&](int64_t frame) {
+    if (frame + 1 == c.warmup_frames) warmed_up = true;
+    if (!warmed_up || frame + 1 == c.warmup_frames) return;
+    GLuint b = 0;
+    glCreateBuffers(1, &b);
+    buffers.push_back(b);
+    heap.emplace_back(16384);
+    std::memset(heap.back().data(), 1, heap.back().size());
+  };
+  SoakReport rep = soak::run_soak(c);
+  std::fputs(soak::format_report(c, rep).c_str(), stdout);
+  bool gl_reported = false, rss_reported = false, heap_reported = false;
+  for (const std::string& f : soak::failures(c, rep)) {
+    gl_reported |= f.rfind("GL objects", 0) == 0;
+    rss_reported |= f.rfind("RSS grew", 0) == 0;
+    heap_reported |= f.rfind("heap grew", 0) == 0;
+  }
+  EXPECT_TRUE(gl_reported);
+  EXPECT_TRUE(rss_reported);
+  EXPECT_TRUE(heap_reported);
+  ASSERT_FALSE(rep.memory.empty());
+  EXPECT_EQ(rep.memory.back().gl.buffers - rep.memory.front().gl.buffers, static_cast<int>(buffers.size()));
+  glDeleteBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+}
+
+}  // namespace
+}  // namespace glint
