@@ -77,7 +77,9 @@ struct SoakReport {
   int64_t final_samples = 0;
   double relative_se_whole = 0;  // of the soak's final whole-image mean
   // paired_spp > 0: the same samples accumulated in passes of paired_spp.
-  double paired_whole_relative = 0, paired_worst_pixel_relative = 0;
+  // Soak minus paired, relative to paired, per region; the worst pixel (relative to its value,
+  // or to 1e-3 of the image mean if darker).
+  double paired_relative[kRegions] = {}, paired_worst_pixel_relative = 0;
   double seconds_edits = 0, seconds_accumulation = 0, seconds_reference = 0;
   std::string gl_renderer;
 };
@@ -111,8 +113,8 @@ constexpr double kStatedPrecision = 1e-4;
 // Every check the run fails, in words; empty when it passed. The checks: every edit restarted
 // the accumulation and no exposure change did; the GL object counts after warm-up and at the
 // end are equal; RSS grew by at most rss_growth_bound_kib; every comparison is within k_sigma
-// standard errors in every region; with paired_spp, the whole-image difference is below
-// kStatedPrecision.
+// standard errors in every region; with paired_spp, the difference from the paired run is below
+// kStatedPrecision in every region and every pixel.
 std::vector<std::string> failures(const SoakConfig& config, const SoakReport& report);
 
 }  // namespace glint::soak
