@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <string>
 
@@ -11,12 +12,20 @@
 
 namespace glint::soak {
 
-int64_t resident_kib() {
+Resident resident() {
+  Resident r;
   std::ifstream status("/proc/self/status");
   std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmRSS:", 0) == 0) return std::stoll(line.substr(6));  // "VmRSS:  1234 kB"
-  return 0;
+  auto field = [&](const char* name, int64_t* out) {  // "VmRSS:   1234 kB"
+    const size_t n = std::strlen(name);
+    if (line.compare(0, n, name) == 0) *out = std::stoll(line.substr(n));
+  };
+  while (std::getline(status, line)) {
+    field("VmRSS:", &r.total_kib);
+    field("RssAnon:", &r.anon_kib);
+    field("RssFile:", &r.file_kib);
+  }
+  return r;
 }
 
 int64_t heap_in_use_bytes() {

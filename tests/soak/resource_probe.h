@@ -8,8 +8,14 @@
 
 namespace glint::soak {
 
-// VmRSS in KiB; 0 where /proc/self/status has none.
-int64_t resident_kib();
+// Resident memory of this process in KiB, from /proc/self/status: VmRSS, and its anonymous
+// (heap, mmapped memory: where a leak lands) and file-backed parts (pages of the executable and
+// libraries, e.g. LLVM's code paged in when llvmpipe compiles a shader state it had not met:
+// not a leak). 0 where a field is missing.
+struct Resident {
+  int64_t total_kib = 0, anon_kib = 0, file_kib = 0;
+};
+Resident resident();
 
 // Bytes of the C heap in use (glibc's mallinfo2: allocated chunks plus mmapped blocks). Unlike
 // RSS it does not hide a leak in memory that malloc already holds, nor count freed pages that

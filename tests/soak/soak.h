@@ -6,7 +6,8 @@
 // The run has three phases on one GpuRenderer:
 //   1. edits: a drag-like edit every frame (sphere position, material colour, roughness and
 //      type, environment intensity, camera orbit, in turn) and an exposure change every M
-//      frames; memory is read after warm-up and at the end of the phase;
+//      frames; memory is read after warm-up and at the end of the phase (each reading the least
+//      over 8 further frames without edits);
 //   2. accumulation: the unedited scene for `frames` frames of `spp` samples, exposure changes
 //      every M frames (which must not restart it), display read-backs; the accumulated mean
 //      is read at checkpoints and memory at the end;
@@ -50,7 +51,7 @@ struct SoakConfig {
 struct MemoryReading {
   std::string when;
   int64_t frame = 0;
-  int64_t rss_kib = 0;
+  Resident rss;  // KiB
   int64_t heap_bytes = 0;
   GlObjectCounts gl;
 };
@@ -101,7 +102,8 @@ SoakReport run_soak(const SoakConfig& config, std::FILE* log = nullptr);
 // it; the soak's own buffers are allocated before the first reading.
 constexpr int64_t kHeapGrowthBound = 64 * 1024;
 
-// Bound on RSS growth from the reading after warm-up to the end (KiB): see soak.cpp.
+// Bound on the growth of anonymous RSS from the reading after warm-up to the end (KiB): 4 MiB
+// or 2% of the first reading, whichever is larger (see soak.cpp for why).
 int64_t rss_growth_bound_kib(const SoakReport& report);
 
 std::string format_report(const SoakConfig& config, const SoakReport& report);
@@ -112,7 +114,8 @@ constexpr double kStatedPrecision = 1e-4;
 
 // Every check the run fails, in words; empty when it passed. The checks: every edit restarted
 // the accumulation and no exposure change did; the GL object counts after warm-up and at the
-// end are equal; RSS grew by at most rss_growth_bound_kib; every comparison is within k_sigma
+// end are equal; anonymous RSS grew by at most rss_growth_bound_kib and the heap in use by at
+// most kHeapGrowthBound; every comparison is within k_sigma
 // standard errors in every region; with paired_spp, the difference from the paired run is below
 // kStatedPrecision in every region and every pixel.
 std::vector<std::string> failures(const SoakConfig& config, const SoakReport& report);
