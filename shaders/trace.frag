@@ -433,7 +433,7 @@ void main() {
   // The increment sum(l - mean) / n itself is rounded when added to the mean: by up to half an
   // ulp of the mean, and when most increments are smaller than that (a pixel of a constant
   // background with a rare brighter sample, late in a long run) they round the same way every
-  // time. Plain float32 then drifted such pixels by +0.1% over 10^5 one-sample passes
+  // time. Plain float32 then drifted such a pixel by 0.1% over 10^5 one-sample passes
   // (tests/soak, bench/SOAK.md). Kahan's compensated summation (Higham, "Accuracy and
   // Stability of Numerical Algorithms", 2nd ed., §4.3) keeps what each addition lost in
   // `compensation` and adds it back the next time: the represented mean is mean - compensation
