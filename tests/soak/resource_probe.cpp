@@ -33,6 +33,11 @@ int64_t heap_in_use_bytes() {
   return static_cast<int64_t>(m.uordblks + m.hblkhd);
 }
 
+int64_t heap_held_bytes() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<int64_t>(m.arena + m.hblkhd);
+}
+
 GlObjectCounts count_gl_objects() {
   GlObjectCounts c;
   // Probe: the next name of each kind.

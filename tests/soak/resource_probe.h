@@ -21,6 +21,9 @@ Resident resident();
 // RSS it does not hide a leak in memory that malloc already holds, nor count freed pages that
 // malloc keeps: a leak of b bytes per frame shows as b per frame.
 int64_t heap_in_use_bytes();
+// Bytes malloc holds from the system (arena plus mmapped blocks), in use or free: where the
+// heap in use is flat and this grows, RSS grows from memory that malloc keeps, not a leak.
+int64_t heap_held_bytes();
 
 struct GlObjectCounts {
   int buffers = 0, textures = 0, framebuffers = 0, vertex_arrays = 0;
