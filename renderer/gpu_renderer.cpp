@@ -36,10 +36,16 @@ GLuint make_texture_2d(GLenum internal_format, int width, int height) {
   return t;
 }
 
-GLuint make_framebuffer(GLuint texture) {
+// A framebuffer drawing into `texture` (location 0) and, if given, `second` (location 1).
+GLuint make_framebuffer(GLuint texture, GLuint second = 0) {
   GLuint fbo = 0;
   glCreateFramebuffers(1, &fbo);
   glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
+  if (second) {
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, second, 0);
+    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(fbo, 2, both);
+  }
   if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("incomplete framebuffer for the render target");
   return fbo;
@@ -67,16 +73,18 @@ void GpuRenderer::resize(int width, int height) {
   if (accumulation_[0]) {
     glDeleteFramebuffers(2, accumulation_fbo_);
     glDeleteTextures(2, accumulation_);
+    glDeleteTextures(2, compensation_);
     glDeleteFramebuffers(1, &display_fbo_);
     glDeleteTextures(1, &display_texture_);
-    accumulation_[0] = accumulation_[1] = display_texture_ = 0;
+    accumulation_[0] = accumulation_[1] = compensation_[0] = compensation_[1] = display_texture_ = 0;
   }
   width_ = width;
   height_ = height;
   if (width <= 0 || height <= 0) return;
   for (int i = 0; i < 2; ++i) {
     accumulation_[i] = make_texture_2d(GL_RGBA32F, width, height);
-    accumulation_fbo_[i] = make_framebuffer(accumulation_[i]);
+    compensation_[i] = make_texture_2d(GL_RGBA32F, width, height);
+    accumulation_fbo_[i] = make_framebuffer(accumulation_[i], compensation_[i]);
   }
   display_texture_ = make_texture_2d(GL_RGBA8, width, height);
   // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
@@ -126,7 +134,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     trace_timers_.clear();
     trace_gpu_seconds_ = 0;
     const float zero[4] = {0, 0, 0, 0};
-    for (GLuint t : accumulation_)
+    for (GLuint t : {accumulation_[0], accumulation_[1], compensation_[0], compensation_[1]})
       if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   }
   digests_ = d;
@@ -382,6 +390,7 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   glBindTextureUnit(0, accumulation_[current_]);
   glBindTextureUnit(1, texture_array_);
   glBindTextureUnit(2, environment_texture_);
+  glBindTextureUnit(3, compensation_[current_]);
   glBindVertexArray(vao_);
   return p;
 }

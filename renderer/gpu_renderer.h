@@ -2,7 +2,9 @@
 //
 // Per frame: sync(scene) compares digests and uploads only what changed, restarting the
 // accumulation when radiance inputs changed; trace(k) adds k samples per pixel into ping-pong
-// RGBA32F buffers; update_display() re-runs the tonemap pass when its inputs changed.
+// RGBA32F buffers; update_display() re-runs the tonemap pass when its inputs changed. The
+// running mean is kept with Kahan compensation (a second RGBA32F pair; shaders/trace.frag) so
+// that 10^5 passes do not drift it (tests/soak, bench/SOAK.md).
 #pragma once
 
 #include <cstdint>
@@ -158,7 +160,8 @@ class GpuRenderer {
   std::unique_ptr<GlProgram> tonemap_program_;
   GLuint vao_ = 0;
   GLuint accumulation_[2] = {0, 0};
-  GLuint accumulation_fbo_[2] = {0, 0};
+  GLuint compensation_[2] = {0, 0};      // what each accumulation's float32 mean could not hold
+  GLuint accumulation_fbo_[2] = {0, 0};  // each draws into accumulation_[i] and compensation_[i]
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
   GLuint buffers_[6] = {0, 0, 0, 0, 0, 0};  // spheres, quads, materials, layer sizes, lights,

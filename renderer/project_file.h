@@ -28,15 +28,16 @@ struct ProjectError : std::runtime_error {
 // Limits of a project, checked on load and by validate_scene (DESIGN.md §3 leaves them open).
 //  - Film: at most kMaxFilmSide pixels per side (the GL_MAX_TEXTURE_SIZE of llvmpipe and common
 //    GPUs) and kMaxFilmPixels in all. The renderer keeps kFilmBytesPerPixel of GPU memory per
-//    pixel (two RGBA32F accumulation textures and an RGBA8 display texture), so the largest film
-//    takes 2.25 GiB; a larger one is refused with its memory estimate, never attempted.
+//    pixel (two RGBA32F accumulation textures, two RGBA32F compensation textures and an RGBA8
+//    display texture), so the largest film takes 4.25 GiB; a larger one is refused with its
+//    memory estimate, never attempted.
 //  - Spheres and quads: at most kMaxSpheres and kMaxQuads each (2^20; 10^6 spheres load). Their
 //    std430 arrays (32 and 128 bytes an element) then stay within 128 MiB, the smallest
 //    GL_MAX_SHADER_STORAGE_BLOCK_SIZE that OpenGL 4.5 allows. A longer array is refused before
 //    any of its elements is read.
 constexpr int kMaxFilmSide = 16384;
 constexpr int64_t kMaxFilmPixels = int64_t(1) << 26;  // e.g. 8192 x 8192
-constexpr int kFilmBytesPerPixel = 2 * 16 + 4;
+constexpr int kFilmBytesPerPixel = 4 * 16 + 4;
 constexpr size_t kMaxSpheres = size_t(1) << 20;
 constexpr size_t kMaxQuads = size_t(1) << 20;
 
@@ -84,7 +85,7 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files = 
 // The problem with a width x height film (file name empty; JSON path film.width, film.height or
 // film), or nullopt when it is within the limits above. Sizes too large say how much GPU memory
 // they would take: "film.width: must be an integer in [1, 16384] (got 100000); a 100000x100000
-// film would need 335.3 GiB of GPU buffers (36 bytes per pixel), the limit is 2.25 GiB
+// film would need 633.3 GiB of GPU buffers (68 bytes per pixel), the limit is 4.25 GiB
 // (67108864 pixels, e.g. 8192x8192)".
 std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
 

@@ -3,8 +3,9 @@
 // lacks; none defined is the generic program.)
 // Path tracing pass: adds u_samples_per_pass samples to every pixel's running mean.
 // Accumulation texel: rgb = mean of the finite samples so far, a = count of non-finite
-// samples discarded. The pass reads the previous accumulation and writes the next one
-// (ping-pong); the exact sample count lives on the CPU.
+// samples discarded; compensation texel: rgb = the low-order part of the mean that float32
+// could not hold (Kahan), a unused. The pass reads the previous accumulation and compensation
+// and writes the next ones (ping-pong); the exact sample count lives on the CPU.
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/sobol.glsl"
@@ -48,6 +49,7 @@ layout(std430, binding = 3) readonly buffer LayerSizes { ivec4 layer_sizes[]; };
 layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
 
 layout(binding = 0) uniform sampler2D u_previous;
+layout(binding = 3) uniform sampler2D u_previous_compensation;
 layout(binding = 1) uniform sampler2DArray u_textures;
 layout(binding = 2) uniform sampler2D u_environment;
 
@@ -78,6 +80,7 @@ uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when 
 uniform bool u_sobol;   // Owen-scrambled Sobol points instead of independent PCG numbers
 
 layout(location = 0) out vec4 out_accumulation;
+layout(location = 1) out vec4 out_compensation;
 
 // The sample's random numbers. PCG: one hashed stream per (pixel, sample, seed), read in
 // order. Sobol: the sample's point in a given dimension of the pixel's scrambled sequence (1-D
@@ -400,6 +403,7 @@ void main() {
   // Texel row y holds image row y (top first), so read-back needs no flip.
   uint row = uint(pixel.y);
   vec4 previous = u_samples_before > 0u ? texelFetch(u_previous, pixel, 0) : vec4(0.0);
+  vec3 compensation = u_samples_before > 0u ? texelFetch(u_previous_compensation, pixel, 0).rgb : vec3(0.0);
   // The pass adds the sum of the samples' deviations from the previous mean, not their sum:
   // mean += sum(l - mean) / n. The deviations are small (exactly 0 for a constant once the mean
   // has reached it), so their rounding is small too; summing the samples themselves and
@@ -426,7 +430,23 @@ void main() {
   }
   float discarded = previous.a + float(u_samples_per_pass - finite_count);
   float finite_total = float(u_samples_before) + float(u_samples_per_pass) - discarded;
-  vec3 mean = previous.rgb;
-  if (finite_total > 0.0) mean += deviation_sum / finite_total;
+  // The increment sum(l - mean) / n itself is rounded when added to the mean: by up to half an
+  // ulp of the mean, and when most increments are smaller than that (a pixel of a constant
+  // background with a rare brighter sample, late in a long run) they round the same way every
+  // time. Plain float32 then drifted such a pixel by 0.1% over 10^5 one-sample passes
+  // (tests/soak, bench/SOAK.md). Kahan's compensated summation (Higham, "Accuracy and
+  // Stability of Numerical Algorithms", 2nd ed., §4.3) keeps what each addition lost in
+  // `compensation` and adds it back the next time: the represented mean is mean - compensation
+  // (so the deviations, taken from `mean`, are short by finite_count * compensation).
+  // `precise` forbids the compiler to simplify (t - mean) - y to 0.
+  precise vec3 mean = previous.rgb;
+  precise vec3 lost = compensation;
+  if (finite_total > 0.0) {
+    precise vec3 y = (deviation_sum + float(finite_count) * lost) / finite_total - lost;
+    precise vec3 t = mean + y;
+    lost = (t - mean) - y;
+    mean = t;
+  }
   out_accumulation = vec4(mean, discarded);
+  out_compensation = vec4(lost, 0.0);
 }

@@ -172,16 +172,16 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"100000x100000 film",
        [] { return edit("\"width\": 64, \"height\": 32", "\"width\": 100000, \"height\": 100000"); },
        "film.width: must be an integer in [1, 16384] (got 100000); a 100000x100000 film would "
-       "need 335.3 GiB of GPU buffers (36 bytes per pixel), the limit is 2.2 GiB (67108864 "
+       "need 633.3 GiB of GPU buffers (68 bytes per pixel), the limit is 4.2 GiB (67108864 "
        "pixels, e.g. 8192x8192)"},
       {"16384x16384 film",
        [] { return edit("\"width\": 64, \"height\": 32", "\"width\": 16384, \"height\": 16384"); },
-       "film: a 16384x16384 film would need 9.0 GiB of GPU buffers (36 bytes per pixel), the "
-       "limit is 2.2 GiB (67108864 pixels, e.g. 8192x8192)"},
+       "film: a 16384x16384 film would need 17.0 GiB of GPU buffers (68 bytes per pixel), the "
+       "limit is 4.2 GiB (67108864 pixels, e.g. 8192x8192)"},
       {"2^64 film height", [] { return edit("\"height\": 32", "\"height\": 18446744073709551615"); },
        "film.height: must be an integer in [1, 16384] (got 9223372036854775807); a "
-       "64x9223372036854775807 film would need 19791209299968.0 GiB of GPU buffers (36 bytes "
-       "per pixel), the limit is 2.2 GiB (67108864 pixels, e.g. 8192x8192)"},
+       "64x9223372036854775807 film would need 37383395344384.0 GiB of GPU buffers (68 bytes "
+       "per pixel), the limit is 4.2 GiB (67108864 pixels, e.g. 8192x8192)"},
       {"2^20 + 1 spheres", [&] { return edit("\"spheres\": [{", "\"spheres\": " + huge_list + ", \"quads\": [{"); },
        "spheres: too many spheres: 1048577 (the limit is 1048576, so that their GPU array fits "
        "the 128 MiB that OpenGL 4.5 guarantees for a shader storage block)"},
