@@ -329,7 +329,7 @@ void GpuRenderer::prepare_specialised_program() {
 }
 
 // A job for the worker: link the variant, then draw one pixel with it in the state a trace pass
-// draws in (an RGBA32F target; this renderer's textures on units 0-2 and buffers on 0-5, whose
+// draws in (two RGBA32F targets; this renderer's textures on units 0-3 and buffers on 0-5, whose
 // formats and sampling enter the compiled code's key), so that the driver compiles there the
 // code this renderer's first pass will look up. The names are captured now; should the renderer
 // replace a texture meanwhile, the driver compiles again at that first pass (only slower).
@@ -339,16 +339,24 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
   job->fragment = "trace.frag";
   job->defines = defines;
   const TraceUniforms uniforms = uniforms_;
-  const GLuint textures[3] = {accumulation_[current_], texture_array_, environment_texture_};
+  const GLuint textures[4] = {accumulation_[current_], texture_array_, environment_texture_,
+                              compensation_[current_]};
   std::vector<GLuint> buffers(buffers_, buffers_ + 6);
   job->warm_up = [uniforms, textures, buffers](GlProgram& p) {
+    // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
+    GLuint target[2] = {make_texture_2d(GL_RGBA32F, 1, 1), make_texture_2d(GL_RGBA32F, 1, 1)};
+    GLuint fbo = make_framebuffer(target[0], target[1]);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     apply_trace_uniforms(p, uniforms);
     p.set("u_resolution", glm::ivec2(1, 1));
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
     for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
-    for (GLuint i = 0; i < 3; ++i) glBindTextureUnit(i, textures[i]);
+    for (GLuint i = 0; i < 4; ++i) glBindTextureUnit(i, textures[i]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(2, target);
   };
   renderer_options_.worker->submit(job);
   return job;

@@ -34,10 +34,6 @@ void ProgramWorker::run() {
   try {
     context_.make_current();
     glCreateVertexArrays(1, &vao_);
-    glCreateTextures(GL_TEXTURE_2D, 1, &target_);
-    glTextureStorage2D(target_, 1, GL_RGBA32F, 1, 1);
-    glCreateFramebuffers(1, &fbo_);
-    glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, target_, 0);
   } catch (const std::exception& e) {
     healthy_ = false;
     context_error_ = e.what();
@@ -57,24 +53,20 @@ void ProgramWorker::run() {
     job->done_.store(true, std::memory_order_release);
   }
   if (healthy_) {
-    glDeleteFramebuffers(1, &fbo_);
-    glDeleteTextures(1, &target_);
     glDeleteVertexArrays(1, &vao_);
     context_.release();
   }
 }
 
-// Links a program and draws one pixel with it, in the worker's own target; returns the draw's
-// seconds (the driver's compile at the first draw, when it does that).
+// Runs the job's draw with the program; returns its seconds (the driver's compile at the first
+// draw, when it does that).
 double ProgramWorker::draw_once(ProgramJob& job, GlProgram& program) {
   const auto start = std::chrono::steady_clock::now();
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, 1, 1);
   glBindVertexArray(vao_);
   glUseProgram(program.id());
   job.warm_up(program);
   glUseProgram(0);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glFinish();
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

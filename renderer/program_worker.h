@@ -32,10 +32,10 @@ struct SharedContextHooks {
   std::function<void()> release;       // called once on the worker thread when it ends
 };
 
-// One program to build. `warm_up` runs on the worker thread with the linked program, the
-// worker's context current and its own 1x1 RGBA32F framebuffer and vertex array bound: it sets
-// what the draw needs (uniforms, textures, buffers) and draws, so that the driver compiles the
-// variant of the program for the state the renderer will draw with.
+// One program to build. `warm_up` runs on the worker thread with the linked program in use, the
+// worker's context current and a vertex array bound: it binds what the renderer's draws bind
+// (a framebuffer of the same formats, made there since framebuffers are not shared; uniforms,
+// textures, buffers) and draws, so that the driver compiles the code the renderer will use.
 struct ProgramJob {
   std::string vertex, fragment, defines;
   std::function<void(GlProgram&)> warm_up;
@@ -79,7 +79,7 @@ class ProgramWorker {
   bool stopping_ = false;
   std::atomic<bool> healthy_{true};
   std::string context_error_;
-  GLuint vao_ = 0, target_ = 0, fbo_ = 0;  // the worker context's own (not shared) objects
+  GLuint vao_ = 0;  // the worker context's own (vertex arrays are not shared)
   std::thread thread_;
 };
 

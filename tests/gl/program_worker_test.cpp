@@ -240,10 +240,7 @@ TEST(GlProgramWorker, FirstDrawAfterTheWorkerIsCheaperThanACold) {
   job->vertex = "fullscreen.vert";
   job->fragment = "trace.frag";
   job->defines = defines + nonce_define();
-  job->warm_up = [](GlProgram& p) {
-    p.set("u_samples_per_pass", 0);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  };
+  job->warm_up = [](GlProgram& p) { OnePixelTarget().draw_seconds(p); };  // made in its context
   f.worker->submit(job);
   ASSERT_TRUE(wait_done(*job, 120));
   ASSERT_NE(job->program, nullptr) << job->error;
