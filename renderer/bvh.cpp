@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "renderer/loop_budget.h"
+
 namespace glint {
 namespace {
 
@@ -240,6 +242,53 @@ float ray_extent(const std::vector<GpuSphere>& spheres, const std::vector<GpuQua
   for (const GpuQuad& q : quads)
     for (const glm::vec4& p : {q.p0, q.p1, q.p2, q.p3}) m = std::max(m, max_abs(glm::dvec3(p)));
   return round_up(m);
+}
+
+bool refit_bvh(Bvh& bvh, const std::vector<GpuSphere>& spheres, const std::vector<GpuQuad>& quads,
+               float ray_extent) {
+  const size_t n = spheres.size() + quads.size();
+  if (n == 0 || bvh.primitives.size() != n) return false;
+  auto box_of = [&](int32_t ref) {
+    size_t r = static_cast<size_t>(ref);
+    return r < spheres.size() ? sphere_box(spheres[r], ray_extent) : quad_box(quads[r - spheres.size()], ray_extent);
+  };
+  // Children follow their parent in the array: a backward pass sees children first. The float
+  // boxes of children are unions of rounded-outward boxes, so their union stays conservative.
+  for (size_t i = bvh.nodes.size(); i-- > 0;) {
+    GpuBvhNode& node = bvh.nodes[i];
+    if (node.count > 0) {
+      DBox b;
+      for (int k = node.first; k < node.first + node.count; ++k) b.grow(box_of(bvh.primitives[static_cast<size_t>(k)]));
+      Aabb f = to_float(b);
+      node.lo = f.lo;
+      node.hi = f.hi;
+    } else {
+      const GpuBvhNode& a = bvh.nodes[i + 1];
+      const GpuBvhNode& c = bvh.nodes[static_cast<size_t>(node.first)];
+      node.lo = glm::min(a.lo, c.lo);
+      node.hi = glm::max(a.hi, c.hi);
+    }
+  }
+  return true;
+}
+
+double sah_cost(const Bvh& bvh) {
+  auto half_area = [](const GpuBvhNode& n) {
+    glm::dvec3 e = glm::max(glm::dvec3(n.hi) - glm::dvec3(n.lo), glm::dvec3(0));
+    return e.x * e.y + e.y * e.z + e.z * e.x;
+  };
+  const double root = half_area(bvh.nodes[0]);
+  if (!(root > 0) || bvh.primitives.empty()) return 0;
+  double cost = 0;
+  for (const GpuBvhNode& n : bvh.nodes) cost += half_area(n) / root * (n.count > 0 ? 1.0 + n.count : 1.0);
+  return cost;
+}
+
+bool use_bvh(Accel accel, long shapes, int max_bounces) {
+  if (shapes <= 0 || accel == Accel::loop) return false;
+  if (accel == Accel::bvh) return true;
+  return shapes >= kBvhCrossoverShapes ||
+         loop_iterations_per_sample(shapes, max_bounces) > kLlvmpipeLoopLimit;
 }
 
 Bvh build_bvh(const std::vector<GpuSphere>& spheres, const std::vector<GpuQuad>& quads,

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "renderer/gpu_scene.h"
+#include "renderer/render_options.h"
 
 namespace glint {
 
@@ -56,8 +57,23 @@ float ray_extent(const std::vector<GpuSphere>& spheres, const std::vector<GpuQua
 Bvh build_bvh(const std::vector<GpuSphere>& spheres, const std::vector<GpuQuad>& quads,
               float ray_extent);
 
-// Shapes from which the BVH beats the plain loop with automatic choice (see bvh.cpp for the
-// measurement on Mesa llvmpipe).
+// Recomputes every box bottom-up for shapes that moved, keeping the tree: a few hundred times
+// cheaper than a build, for edits that keep the number of shapes (an editor drag). False, and
+// nothing changed, when the counts differ from the tree's.
+bool refit_bvh(Bvh& bvh, const std::vector<GpuSphere>& spheres, const std::vector<GpuQuad>& quads,
+               float ray_extent);
+
+// The surface area heuristic cost of the tree (expected node visits plus primitive tests per
+// ray, for rays uniform over the root box's surface): refitting after large moves makes it grow.
+double sah_cost(const Bvh& bvh);
+
+// Shapes from which the BVH beats the plain loop (see bvh.cpp for the measurement on Mesa
+// llvmpipe).
 constexpr long kBvhCrossoverShapes = 32;
+
+// The renderer's choice: the forced one, or with Accel::automatic the BVH from
+// kBvhCrossoverShapes shapes and wherever one sample of the loop would exceed llvmpipe's loop
+// limit (renderer/loop_budget.h). Never for an empty scene.
+bool use_bvh(Accel accel, long shapes, int max_bounces);
 
 }  // namespace glint
