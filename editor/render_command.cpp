@@ -66,7 +66,7 @@ const char* const kUsage =
     "  --clamp L          scale samples brighter than luminance L down to L: removes\n"
     "                     fireflies but BIASED (darker); never use it for references\n"
     "Closest hits (same image either way; for measuring):\n"
-    "  --accel A          auto (the default: a BVH from 32 shapes, and wherever the loop\n"
+    "  --accel A          auto (the default: a BVH from 48 shapes, and wherever the loop\n"
     "                     would exceed Mesa llvmpipe's shader loop limit), loop (test every\n"
     "                     shape for every ray), or bvh (bounding volume hierarchy, built\n"
     "                     before the clock starts; its build time is printed)\n"

@@ -67,9 +67,12 @@ bool refit_bvh(Bvh& bvh, const std::vector<GpuSphere>& spheres, const std::vecto
 // ray, for rays uniform over the root box's surface): refitting after large moves makes it grow.
 double sah_cost(const Bvh& bvh);
 
-// Shapes from which the BVH beats the plain loop (see bvh.cpp for the measurement on Mesa
-// llvmpipe).
-constexpr long kBvhCrossoverShapes = 32;
+// Shapes from which the BVH beats the plain loop. Measured on Mesa llvmpipe (this 2-core
+// machine, shared, so noisy): `python3 bench/scale.py --sizes 4,8,16,32,64,128 --repeats 5
+// --spp 8` (64x64 pixels, 4 bounces, a grid of spheres on a floor quad), median samples per
+// pixel per second loop / BVH: 4 spheres 123 / 82, 8: 60 / 58, 16: 70 / 42, 32: 39 / 34,
+// 64: 19 / 27, 128: 11 / 23. The crossover lies between 33 and 65 shapes; 48 is between.
+constexpr long kBvhCrossoverShapes = 48;
 
 // The renderer's choice: the forced one, or with Accel::automatic the BVH from
 // kBvhCrossoverShapes shapes and wherever one sample of the loop would exceed llvmpipe's loop
