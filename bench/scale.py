@@ -37,10 +37,13 @@ def loop_fits_llvmpipe(n, bounces):
 
 
 def write_scene(path, n, bounces):
-    """N spheres on a square grid (a deterministic jitter), N // 100 small quads, a floor."""
+    """N spheres on a square grid over a fixed 20 x 20 floor (a deterministic jitter), N // 100
+    small quads above it. The camera and the extent are the same for every N and the shapes
+    shrink with the spacing, so every image shows the same kind of field and only the number of
+    shapes changes (the BVH's cost should then grow with log N)."""
     side = max(1, math.ceil(math.sqrt(n)))
-    spacing = 1.0
-    half = side * spacing / 2
+    half = 10.0
+    spacing = 2 * half / side
     state = 12345
 
     def rnd():  # xorshift32 in [0, 1)
@@ -53,8 +56,8 @@ def write_scene(path, n, bounces):
     kinds = ["matte", "glossy", "metal", "matte", "lamp"]
     with open(path, "w") as f:
         f.write('{"format": "glint-project", "version": 1,\n')
-        f.write('"camera": {"position": [0, %g, %g], "target": [0, 0, 0], "up": [0, 1, 0], '
-                '"vfov_deg": 50, "aperture_radius": 0, "focus_distance": 5},\n' % (0.45 * half + 2, 0.9 * half + 3))
+        f.write('"camera": {"position": [0, 9, 16], "target": [0, 0, -1], "up": [0, 1, 0], '
+                '"vfov_deg": 50, "aperture_radius": 0, "focus_distance": 5},\n')
         f.write('"film": {"width": 64, "height": 64}, "render": {"max_bounces": %d, "seed": 0},\n' % bounces)
         f.write('"environment": {"color": [0.6, 0.7, 0.9], "texture": null, "intensity": 1, "rotation_deg": 0},\n')
         f.write('"materials": [{"name": "matte", "type": "matte", "color": [0.8, 0.4, 0.2]},'
@@ -64,21 +67,22 @@ def write_scene(path, n, bounces):
                 ' {"name": "floor", "type": "matte", "color": [0.5, 0.5, 0.5]}],\n')
         f.write('"spheres": [\n')
         for i in range(n):
-            x = (i % side) * spacing - half + 0.3 * (rnd() - 0.5)
-            z = (i // side) * spacing - half + 0.3 * (rnd() - 0.5)
-            r = 0.2 + 0.2 * rnd()
-            f.write('%s{"name": "s%d", "center": [%.4f, %.4f, %.4f], "radius": %.4f, "material": "%s"}\n'
+            x = (i % side + 0.5) * spacing - half + 0.3 * spacing * (rnd() - 0.5)
+            z = (i // side + 0.5) * spacing - half + 0.3 * spacing * (rnd() - 0.5)
+            r = (0.2 + 0.2 * rnd()) * spacing
+            f.write('%s{"name": "s%d", "center": [%.6g, %.6g, %.6g], "radius": %.6g, "material": "%s"}\n'
                     % ("," if i else "", i, x, r, z, r, kinds[i % len(kinds)]))
         f.write('],\n"quads": [\n')
         f.write('{"name": "floor", "material": "floor", "corners": [[%g, 0, %g], [%g, 0, %g], [%g, 0, %g], [%g, 0, %g]]}\n'
-                % (-half - 5, -half - 5, -half - 5, half + 5, half + 5, -half - 5, half + 5, half + 5))
+                % (-half, -half, -half, half, half, -half, half, half))
+        q = 1.5 * spacing  # quads: small panels just above the spheres
         for i in range(n // 100):
             x = (rnd() - 0.5) * 2 * half
             z = (rnd() - 0.5) * 2 * half
-            y = 0.8 + rnd()
-            f.write(',{"name": "q%d", "material": "metal", "corners": [[%.4f, %.4f, %.4f], [%.4f, %.4f, %.4f], '
-                    '[%.4f, %.4f, %.4f], [%.4f, %.4f, %.4f]]}\n'
-                    % (i, x, y, z, x, y + 0.5, z, x + 0.5, y, z + 0.1, x + 0.5, y + 0.5, z + 0.1))
+            y = spacing * (1 + 2 * rnd())
+            f.write(',{"name": "q%d", "material": "metal", "corners": [[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g], '
+                    '[%.6g, %.6g, %.6g], [%.6g, %.6g, %.6g]]}\n'
+                    % (i, x, y, z, x, y + q, z, x + q, y, z + 0.2 * q, x + q, y + q, z + 0.2 * q))
         f.write(']}\n')
 
 
@@ -176,16 +180,18 @@ def main():
         scene = os.path.join(args.work, "spheres_%d.glint" % n)
         write_scene(scene, n, args.bounces)
         row = {"n": n, "quads": n // 100 + 1}
-        for accel in ("loop", "bvh"):
+        # The BVH first: its run tells which driver this is, and on llvmpipe the loop is not run
+        # where its image would be wrong.
+        for accel in ("bvh", "loop"):
             if accel == "loop" and n > args.max_loop:
+                continue
+            if accel == "loop" and llvmpipe and not loop_fits_llvmpipe(n + n // 100 + 1, args.bounces):
+                row["loop_invalid"] = True
+                print("N=%d loop: exceeds llvmpipe's loop limit, not run" % n, flush=True)
                 continue
             runs = [render(args.glint, scene, accel, args.width, args.spp, os.path.join(args.work, "out.exr"))
                     for _ in range(args.repeats)]
             device, llvmpipe = runs[0]["device"], runs[0]["llvmpipe"]
-            if accel == "loop" and llvmpipe and not loop_fits_llvmpipe(n + n // 100 + 1, args.bounces):
-                row["loop_invalid"] = statistics.median(r["spp_per_s"] for r in runs)
-                print("N=%d loop: exceeds llvmpipe's loop limit, not reported" % n, flush=True)
-                continue
             row[accel] = statistics.median(r["spp_per_s"] for r in runs)
             row[accel + "_all"] = [r["spp_per_s"] for r in runs]
             if accel == "bvh":
@@ -200,25 +206,30 @@ def main():
     fit = fit_log(rows)
     lines = ["# Scaling: plain loop against BVH", "",
              "Written by `python3 bench/scale.py %s` on %s, %s (%s), %d x %d pixels, %d spp per render, "
-             "max_bounces %d, median of %d renders per point. Scenes: N spheres on a grid, N/100 "
-             "small quads and a floor quad (`write_scene` in bench/scale.py)."
+             "max_bounces %d, median of %d renders per point. Scenes: N spheres on a grid over a fixed "
+             "floor, shrinking with N, N/100 small quads (`write_scene` in bench/scale.py)."
              % (" ".join(sys.argv[1:]), datetime.date.today().isoformat(), device, platform.machine(),
                 args.width, args.width, args.spp, args.bounces, args.repeats), "",
              "Samples per pixel per second are those `glint render` reports (trace passes only). "
-             "BVH build: CPU time of pack-free binned-SAH construction as printed by `glint render` "
-             "(the scene's load and packing are not included).", ""]
+             "BVH build: CPU time of the binned-SAH construction as printed by `glint render` "
+             "(the scene's load and packing are not included). Timings on a shared machine are noisy: "
+             "compare the two columns of one row (ratios), and see the individual runs below.", ""]
     if llvmpipe:
         lines += ["On llvmpipe the loop is only valid where one sample stays within the driver's "
                   "65535 loop iterations, (max_bounces + 2) x (3 x (N + 2) + 64) <= 65535; above that "
-                  "its image is wrong and its speed is not reported (\"invalid\").", ""]
+                  "its image is wrong and it is not run (\"invalid\").", ""]
     lines += ["| spheres | quads | loop spp/s | BVH spp/s | BVH / loop | BVH nodes | depth | build ms |",
               "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
-        loop = "%.2f" % r["loop"] if r.get("loop") else ("invalid" if "loop_invalid" in r else "not run")
+        loop = "%.2f" % r["loop"] if r.get("loop") else ("invalid" if r.get("loop_invalid") else "not run")
         ratio = "%.2f" % (r["bvh"] / r["loop"]) if r.get("loop") and r.get("bvh") else ""
-        lines.append("| %d | %d | %s | %.2f | %s | %d | %d | %.1f |" % (
+        lines.append("| %d | %d | %s | %.2f | %s | %d | %d | %.3g |" % (
             r["n"], r["quads"], loop, r["bvh"], ratio, r["nodes"], r["depth"], r["build_ms"]))
     lines += ["", "![samples per second against primitives](%s)" % os.path.basename(svg), ""]
+    lines += ["Individual runs (spp/s): " + "; ".join(
+        "N=%d bvh %s%s" % (r["n"], ", ".join("%.2f" % v for v in r.get("bvh_all", [])),
+                           (" loop " + ", ".join("%.2f" % v for v in r["loop_all"])) if r.get("loop_all") else "")
+        for r in rows), ""]
     if fit:
         a, b, r2 = fit
         lines += ["BVH time per sample against log10 N (least squares): %.4g + %.4g log10 N seconds per "
