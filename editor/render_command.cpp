@@ -267,8 +267,9 @@ int run_render_command(int argc, char** argv) {
     }
     if (renderer.exceeds_llvmpipe_loop_limit() && gl_renderer_name().find("llvmpipe") != std::string::npos)
       std::fprintf(stderr,
-                   "warning: %s has too many shapes for Mesa's llvmpipe, which stops a shader's loops "
-                   "after 65535 iterations: parts of this image will be wrong (use a GPU)\n",
+                   "warning: one sample of %s may run more loop iterations than Mesa's llvmpipe "
+                   "allows a shader (65535; too many bounces, or too many shapes for the loop with "
+                   "--accel loop): parts of this image may be wrong (use a GPU)\n",
                    o.project.c_str());
 
     const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);

@@ -50,6 +50,9 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(kBuffers, buffers_);
+  // The BVH buffers are bound for every pass: never without storage, even before a BVH exists.
+  upload_storage(buffers_[6], std::vector<GpuBvhNode>{});
+  upload_storage(buffers_[7], std::vector<int32_t>{});
 }
 
 GpuRenderer::~GpuRenderer() {

@@ -327,6 +327,37 @@ TEST(Bvh, SameHitAsTheLoop) {
   expect_same_hits(far, 5000, 10, 1, 0.15);
 }
 
+// Rays parallel to an axis that touch a sphere at its extreme point in that slab: the loop's
+// test reports the tangent hit (discriminant exactly 0 with these exact values), and only the
+// padding keeps that point strictly inside the box (on the box's face, a ray with a zero
+// direction component gets an empty slab interval, bvh.glsl's safe_inverse).
+TEST(Bvh, TangentRaysAtExtremePointsAreFound) {
+  Shapes s;
+  for (int i = 0; i < 64; ++i)
+    s.spheres.push_back(sphere({0.5f * float(i % 8), 0.25f * float(i / 8), -2}, 0.125f + 0.0625f * float(i % 3)));
+  Bvh bvh = build(s);
+  view(s, bvh);
+  int tangent_hits = 0;
+  for (size_t i = 0; i < s.spheres.size(); ++i) {
+    glm::vec4 cr = s.spheres[i].center_radius;
+    for (int axis = 0; axis < 3; ++axis)
+      for (float side : {-1.0f, 1.0f}) {
+        glm::vec3 p(cr);
+        p[axis] += side * cr.w;  // the extreme point
+        glm::vec3 d(0);
+        d[(axis + 1) % 3] = 1;
+        gpu::Ray ray(p - 10.0f * d, d);
+        gpu::PrimitiveHit loop = gpu::closest_hit_loop(ray, 1e30f);
+        gpu::PrimitiveHit tree = gpu::closest_hit_bvh(ray, 1e30f, 1 << 30);
+        if (loop.ref == static_cast<int>(i) && loop.t == 10.0f) ++tangent_hits;
+        EXPECT_EQ(tree.ref, loop.ref) << "sphere " << i << " axis " << axis << " side " << side;
+        EXPECT_EQ(tree.t, loop.t);
+      }
+  }
+  std::printf("%d tangent hits\n", tangent_hits);
+  EXPECT_GT(tangent_hits, 0);
+}
+
 // A capped traversal says so, and never reports a hit it did not verify.
 TEST(Bvh, StepCapIsReported) {
   Shapes s = random_shapes(5000, 0, 11);
