@@ -96,7 +96,9 @@ def render(glint, scene, accel, width, spp, out):
     if not m:
         raise RuntimeError("no timing line in:\n" + p.stderr)
     result = {"spp_per_s": float(m.group(5)), "seconds": float(m.group(4)),
-              "llvmpipe": "llvmpipe" in p.stderr, "discarded": "samples were discarded" in p.stderr}
+              "llvmpipe": "llvmpipe" in p.stderr}
+    d = re.search(r"warning: (\d+) samples were discarded", p.stderr)
+    result["discarded"] = int(d.group(1)) if d else 0
     b = re.search(r"closest hits by BVH: (\d+) nodes, depth (\d+), built in ([\d.]+) ms", p.stderr)
     if b:
         result.update(nodes=int(b.group(1)), depth=int(b.group(2)), build_ms=float(b.group(3)))
@@ -197,7 +199,7 @@ def main():
             if accel == "bvh":
                 row.update(nodes=runs[0]["nodes"], depth=runs[0]["depth"],
                            build_ms=statistics.median(r["build_ms"] for r in runs),
-                           discarded=any(r["discarded"] for r in runs))
+                           discarded=max(r["discarded"] for r in runs))
             print("N=%d %s: %.2f spp/s (%s)" % (n, accel, row[accel], ", ".join("%.2f" % v for v in row[accel + "_all"])), flush=True)
         rows.append(row)
 
@@ -218,13 +220,14 @@ def main():
         lines += ["On llvmpipe the loop is only valid where one sample stays within the driver's "
                   "65535 loop iterations, (max_bounces + 2) x (3 x (N + 2) + 64) <= 65535; above that "
                   "its image is wrong and it is not run (\"invalid\").", ""]
-    lines += ["| spheres | quads | loop spp/s | BVH spp/s | BVH / loop | BVH nodes | depth | build ms |",
-              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    lines += ["| spheres | quads | loop spp/s | BVH spp/s | BVH / loop | BVH nodes | depth | build ms | BVH discarded |",
+              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:
         loop = "%.2f" % r["loop"] if r.get("loop") else ("invalid" if r.get("loop_invalid") else "not run")
         ratio = "%.2f" % (r["bvh"] / r["loop"]) if r.get("loop") and r.get("bvh") else ""
-        lines.append("| %d | %d | %s | %.2f | %s | %d | %d | %.3g |" % (
-            r["n"], r["quads"], loop, r["bvh"], ratio, r["nodes"], r["depth"], r["build_ms"]))
+        lines.append("| %d | %d | %s | %.2f | %s | %d | %d | %.3g | %d of %d |" % (
+            r["n"], r["quads"], loop, r["bvh"], ratio, r["nodes"], r["depth"], r["build_ms"],
+            r["discarded"], args.width * args.width * args.spp))
     lines += ["", "![samples per second against primitives](%s)" % os.path.basename(svg), ""]
     lines += ["Individual runs (spp/s): " + "; ".join(
         "N=%d bvh %s%s" % (r["n"], ", ".join("%.2f" % v for v in r.get("bvh_all", [])),
@@ -234,8 +237,8 @@ def main():
         a, b, r2 = fit
         lines += ["BVH time per sample against log10 N (least squares): %.4g + %.4g log10 N seconds per "
                   "pixel-sample-pass, R^2 = %.3f." % (a, b, r2), ""]
-    if any(r.get("discarded") for r in rows):
-        lines += ["Some BVH renders discarded samples (a traversal reached its step cap).", ""]
+    lines += ["BVH discarded: the most samples one render discarded (non-finite, or a traversal that "
+              "reached its step cap, renderer/loop_budget.h), out of the samples it took.", ""]
     with open(args.out, "w") as f:
         f.write("\n".join(lines))
     print("wrote %s and %s" % (args.out, svg))

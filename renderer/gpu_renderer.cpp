@@ -7,6 +7,7 @@
 
 #include "renderer/camera_frame.h"
 #include "renderer/environment_distribution.h"
+#include "renderer/gl_context.h"
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
@@ -50,6 +51,7 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(kBuffers, buffers_);
+  llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
   // The BVH buffers are bound for every pass: never without storage, even before a BVH exists.
   upload_storage(buffers_[6], std::vector<GpuBvhNode>{});
   upload_storage(buffers_[7], std::vector<int32_t>{});
@@ -247,7 +249,9 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   samples_per_draw_ = samples_per_draw_for(per_sample);
   exceeds_loop_limit_ = per_sample > kLlvmpipeLoopLimit;
   u.use_bvh = use_bvh_ ? 1 : 0;
-  u.bvh_max_steps = bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces);
+  // The step cap matters on llvmpipe only (its loop limit); elsewhere it is a generous bound
+  // that only a pathological tree would reach. Draws are split the same way everywhere.
+  u.bvh_max_steps = llvmpipe_ ? bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces) : kMaxBvhSteps;
   bvh_stats_.max_steps = u.bvh_max_steps;
   u.light_count = options_.light_sampling ? light_count_ : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are

@@ -179,6 +179,7 @@ class GpuRenderer {
   int samples_per_draw_ = 1;  // samples one draw adds per pixel (loop_budget.h)
   bool exceeds_loop_limit_ = false;
   bool use_bvh_ = false;
+  bool llvmpipe_ = false;   // the context is Mesa's llvmpipe (its loop limit applies)
   Bvh bvh_;                 // of the uploaded geometry when bvh_valid_
   bool bvh_valid_ = false;
   float bvh_extent_ = 0;    // the ray extent its boxes are padded for
