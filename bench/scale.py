@@ -235,8 +235,8 @@ def main():
         for r in rows), ""]
     if fit:
         a, b, r2 = fit
-        lines += ["BVH time per sample against log10 N (least squares): %.4g + %.4g log10 N seconds per "
-                  "pixel-sample-pass, R^2 = %.3f." % (a, b, r2), ""]
+        lines += ["BVH time per sample per pixel (1 / spp/s, for the whole %d x %d image) against log10 N "
+                  "(least squares): %.4g + %.4g log10 N seconds, R^2 = %.3f." % (args.width, args.width, a, b, r2), ""]
     lines += ["BVH discarded: the most samples one render discarded (non-finite, or a traversal that "
               "reached its step cap, renderer/loop_budget.h), out of the samples it took.", ""]
     with open(args.out, "w") as f:
