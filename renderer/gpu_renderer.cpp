@@ -8,6 +8,7 @@
 
 #include "renderer/camera_frame.h"
 #include "renderer/environment_distribution.h"
+#include "renderer/gl_context.h"
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
@@ -57,12 +58,16 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
-  glCreateBuffers(6, buffers_);
+  glCreateBuffers(kBuffers, buffers_);
+  llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
+  // The BVH buffers are bound for every pass: never without storage, even before a BVH exists.
+  upload_storage(buffers_[6], std::vector<GpuBvhNode>{});
+  upload_storage(buffers_[7], std::vector<int32_t>{});
 }
 
 GpuRenderer::~GpuRenderer() {
   resize(0, 0);
-  glDeleteBuffers(6, buffers_);
+  glDeleteBuffers(kBuffers, buffers_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   if (texture_array_) glDeleteTextures(1, &texture_array_);
@@ -109,11 +114,25 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     upload_geometry(packed);
     origin_ = origin;
   }
+  use_bvh_ = use_bvh(options_.accel, static_cast<long>(scene.spheres.size() + scene.quads.size()),
+                     scene.render.max_bounces);
+  if (use_bvh_) {
+    // The boxes are padded for ray origins up to the camera's distance from the render origin
+    // (bvh.cpp): a camera beyond that needs wider boxes.
+    const glm::vec3 camera(glm::dvec3(scene.camera.position) - origin_);
+    const float camera_extent = std::max({std::abs(camera.x), std::abs(camera.y), std::abs(camera.z)});
+    if (geometry_changed || !bvh_valid_ || !(camera_extent <= bvh_extent_)) {
+      if (!geometry_changed) packed = pack_scene(scene, origin_);
+      update_bvh(packed, camera);
+    }
+  }
   // Features: the texture alpha probe only when what it depends on changed; the lens is cheap.
   if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
       d.environment != digests_.environment)
     features_ = scene_features(scene);
   features_.thin_lens = scene.camera.aperture_radius > 0;
+  features_.loop_traversal = !use_bvh_;
+  features_.bvh_traversal = use_bvh_;
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;
@@ -143,6 +162,27 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   return result;
 }
 
+// A refit where only shapes moved (same counts) and the tree has not degraded much (SAH cost
+// within 1.5 times that of its build, Wald 2007's measure of tree quality); a build otherwise.
+void GpuRenderer::update_bvh(const PackedScene& packed, const glm::vec3& camera) {
+  const auto start = std::chrono::steady_clock::now();
+  const float extent = ray_extent(packed.spheres, packed.quads, camera);
+  bool refit = !bvh_.primitives.empty() && refit_bvh(bvh_, packed.spheres, packed.quads, extent);
+  if (refit && sah_cost(bvh_) > 1.5 * bvh_built_cost_) refit = false;
+  if (!refit) {
+    bvh_ = build_bvh(packed.spheres, packed.quads, extent);
+    bvh_built_cost_ = sah_cost(bvh_);
+  }
+  bvh_extent_ = extent;
+  bvh_valid_ = true;
+  upload_storage(buffers_[6], bvh_.nodes);
+  upload_storage(buffers_[7], bvh_.primitives);
+  bvh_stats_.nodes = bvh_.nodes.size();
+  bvh_stats_.depth = bvh_.depth;
+  bvh_stats_.refit = refit;
+  bvh_stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_storage(buffers_[0], packed.spheres);
   upload_storage(buffers_[1], packed.quads);
@@ -152,6 +192,7 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   light_count_ = static_cast<int>(packed.lights.size());
   uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
   uniforms_.quad_count = static_cast<int>(packed.quads.size());
+  bvh_valid_ = false;  // refitted or rebuilt by sync if the BVH is used
 }
 
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
@@ -211,9 +252,17 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.env_textured = textured ? 1 : 0;
   u.env_rotation = glm::radians(env.rotation_deg);
   u.max_bounces = scene.render.max_bounces;
-  samples_per_draw_ = samples_per_draw(shape_count_, scene.render.max_bounces);
-  exceeds_loop_limit_ =
-      loop_iterations_per_sample(shape_count_, scene.render.max_bounces) > kLlvmpipeLoopLimit;
+  const long per_sample =
+      use_bvh_ ? bvh_loop_iterations_per_sample(bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces),
+                                                kBvhMaxLeafSize, scene.render.max_bounces)
+               : loop_iterations_per_sample(shape_count_, scene.render.max_bounces);
+  samples_per_draw_ = samples_per_draw_for(per_sample);
+  exceeds_loop_limit_ = per_sample > kLlvmpipeLoopLimit;
+  u.use_bvh = use_bvh_ ? 1 : 0;
+  // The step cap matters on llvmpipe only (its loop limit); elsewhere it is a generous bound
+  // that only a pathological tree would reach. Draws are split the same way everywhere.
+  u.bvh_max_steps = llvmpipe_ ? bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces) : kMaxBvhSteps;
+  bvh_stats_.max_steps = u.bvh_max_steps;
   u.light_count = options_.light_sampling ? light_count_ : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are
   // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted
@@ -252,6 +301,8 @@ void GpuRenderer::apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_seed", u.seed);
   p.set("u_sphere_count", u.sphere_count);
   p.set("u_quad_count", u.quad_count);
+  p.set("u_use_bvh", u.use_bvh);
+  p.set("u_bvh_max_steps", u.bvh_max_steps);
   p.set("u_cam_origin", u.cam_origin);
   p.set("u_cam_right", u.cam_right);
   p.set("u_cam_up", u.cam_up);
@@ -341,7 +392,7 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
   const TraceUniforms uniforms = uniforms_;
   const GLuint textures[4] = {accumulation_[current_], texture_array_, environment_texture_,
                               compensation_[current_]};
-  std::vector<GLuint> buffers(buffers_, buffers_ + 6);
+  std::vector<GLuint> buffers(buffers_, buffers_ + kBuffers);
   job->warm_up = [uniforms, textures, buffers](GlProgram& p) {
     // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
     GLuint target[2] = {make_texture_2d(GL_RGBA32F, 1, 1), make_texture_2d(GL_RGBA32F, 1, 1)};
@@ -394,7 +445,7 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
   glUseProgram(p.id());
-  for (GLuint i = 0; i < 6; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(0, accumulation_[current_]);
   glBindTextureUnit(1, texture_array_);
   glBindTextureUnit(2, environment_texture_);

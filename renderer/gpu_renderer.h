@@ -15,6 +15,7 @@
 
 #include <epoxy/gl.h>
 
+#include "renderer/bvh.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/image.h"
 #include "renderer/render_options.h"
@@ -95,6 +96,17 @@ class GpuRenderer {
   // One sample of the synced scene may run more loop iterations than Mesa's llvmpipe allows
   // a shader invocation (renderer/loop_budget.h): on llvmpipe its image would be wrong.
   bool exceeds_llvmpipe_loop_limit() const { return exceeds_loop_limit_; }
+  // Whether closest hits of the synced scene are found with the BVH (use_bvh in bvh.h), and the
+  // hierarchy's last update: a full build, or a refit when only shapes moved (an editor drag).
+  bool uses_bvh() const { return use_bvh_; }
+  struct BvhStats {
+    size_t nodes = 0;
+    int depth = 0;
+    bool refit = false;     // the last update refitted the previous tree
+    double seconds = 0;     // CPU time of the last build or refit
+    int max_steps = 0;      // the traversal's step cap (loop_budget.h)
+  };
+  const BvhStats& bvh_stats() const { return bvh_stats_; }
   int width() const { return width_; }
   int height() const { return height_; }
   GLuint display_texture() const { return display_texture_; }
@@ -107,6 +119,7 @@ class GpuRenderer {
  private:
   void resize(int width, int height);
   void upload_geometry(const PackedScene& packed);
+  void update_bvh(const PackedScene& packed, const glm::vec3& camera);
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
@@ -153,6 +166,8 @@ class GpuRenderer {
     unsigned seed = 0;
     int sphere_count = 0;
     int quad_count = 0;
+    int use_bvh = 0;
+    int bvh_max_steps = 0;
     glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};
     float cam_tan_half_vfov = 0, cam_aspect = 1, cam_aperture = 0, cam_focus = 1;
   };
@@ -164,8 +179,9 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};  // each draws into accumulation_[i] and compensation_[i]
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  GLuint buffers_[6] = {0, 0, 0, 0, 0, 0};  // spheres, quads, materials, layer sizes, lights,
-                                           // environment-sampling tables
+  static constexpr int kBuffers = 8;
+  GLuint buffers_[kBuffers] = {};  // spheres, quads, materials, layer sizes, lights,
+                                   // environment-sampling tables, BVH nodes, BVH primitives
   GLuint texture_array_ = 0;
   GLuint environment_texture_ = 0;
 
@@ -183,6 +199,13 @@ class GpuRenderer {
   long shape_count_ = 0;
   int samples_per_draw_ = 1;  // samples one draw adds per pixel (loop_budget.h)
   bool exceeds_loop_limit_ = false;
+  bool use_bvh_ = false;
+  bool llvmpipe_ = false;   // the context is Mesa's llvmpipe (its loop limit applies)
+  Bvh bvh_;                 // of the uploaded geometry when bvh_valid_
+  bool bvh_valid_ = false;
+  float bvh_extent_ = 0;    // the ray extent its boxes are padded for
+  double bvh_built_cost_ = 0;  // SAH cost after the last full build
+  BvhStats bvh_stats_;
   std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;

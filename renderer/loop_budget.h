@@ -6,7 +6,8 @@
 // splits passes into draws of at most samples_per_draw samples, estimated from the loops one
 // sample runs (a bound, not a count). Other drivers have no such limit, and the extra draws cost
 // them nothing noticeable. A scene whose single sample may exceed the limit (thousands of
-// shapes, looped over without an acceleration structure) cannot render correctly on llvmpipe.
+// shapes, looped over without an acceleration structure) cannot render correctly on llvmpipe;
+// the renderer traces such scenes with the BVH (renderer/bvh.h), whose traversal it caps.
 #pragma once
 
 #include <algorithm>
@@ -22,9 +23,42 @@ inline long loop_iterations_per_sample(long shapes, int max_bounces) {
 }
 
 // A quarter of the limit per draw, at most 64 samples.
-inline int samples_per_draw(long shapes, int max_bounces) {
-  const long per_sample = loop_iterations_per_sample(shapes, max_bounces);
+inline int samples_per_draw_for(long per_sample) {
   return static_cast<int>(std::clamp(kLlvmpipeLoopLimit / 4 / std::max(per_sample, 1L), 1L, 64L));
+}
+inline int samples_per_draw(long shapes, int max_bounces) {
+  return samples_per_draw_for(loop_iterations_per_sample(shapes, max_bounces));
+}
+
+// With the BVH (shaders/lib/bvh.glsl) a closest-hit query has no bound below the number of
+// nodes (a ray may meet every box), so the shader caps it: at most `steps` node visits, each
+// running the traversal loop once, the leaf loop at most kLeafSize times, and one more
+// traversal iteration to pop the entry it may have pushed (pushes <= visits), plus the final
+// iteration that finds the stack empty: (kLeafSize + 2) * steps + 1 loop iterations. Under
+// SIMD execution each lane stops at the cap, so the vector runs a query at most that often too.
+// A query that reaches the cap marks its sample, which is then discarded and counted like a
+// non-finite one (never added with a wrong hit). In the estimate above, a query counts as a
+// loop over that many shapes.
+inline long bvh_query_iterations(int steps, int leaf_size) { return (leaf_size + 2L) * steps + 1; }
+
+inline long bvh_loop_iterations_per_sample(int steps, int leaf_size, int max_bounces) {
+  return (max_bounces + 2L) * (3 * (bvh_query_iterations(steps, leaf_size) + 2) + 64);
+}
+
+// The cap: the most steps that keep one sample (a draw of one sample) within the limit, so that
+// on llvmpipe a traversal stops at the cap (and says so) before the driver would stop it
+// silently. Rays in a binned-SAH tree visit tens of nodes (unit.Bvh.SameHitAsTheLoop: 8 to 29 on
+// average), so the cap of 360 at 8 bounces is rarely reached (gl.hard_LoopLimit.BvhSceneOfTenThousandSpheres
+// checks that a 10^4-sphere scene discards no sample). With many bounces the cap would fall below
+// kMinBvhSteps; it stays there, and the scene is reported as exceeding the limit. Measured
+// (bench/scale.py scenes, 4 bounces, cap 602, 64x64 pixels at 4 spp): at 10^5 spheres one
+// sample in 16384 reached it (with a cap of 4000 none did); bench/SCALING.md counts them. Drivers without the limit get
+// kMaxBvhSteps (GpuRenderer).
+constexpr int kMinBvhSteps = 128;
+constexpr int kMaxBvhSteps = 4096;
+inline int bvh_max_steps(int leaf_size, int max_bounces) {
+  const long per_query = (kLlvmpipeLoopLimit / (max_bounces + 2L) - 64) / 3 - 2;
+  return static_cast<int>(std::clamp((per_query - 1) / (leaf_size + 2L), long(kMinBvhSteps), long(kMaxBvhSteps)));
 }
 
 }  // namespace glint

@@ -9,12 +9,17 @@ namespace glint {
 
 enum class SamplerKind { pcg, sobol };
 
+// How closest hits are found: chosen from the scene (renderer/bvh.h, use_bvh), or forced (for
+// measuring; the image is the same either way).
+enum class Accel { automatic, loop, bvh };
+
 struct RenderOptions {
   bool light_sampling = true;        // next-event estimation + MIS for emitting spheres and quads
   bool environment_sampling = true;  // ... and for an environment map (importance-sampled)
   bool russian_roulette = true;      // unbiased path termination after a few bounces
   SamplerKind sampler = SamplerKind::pcg;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
+  Accel accel = Accel::automatic;
   bool operator==(const RenderOptions&) const = default;
 };
 

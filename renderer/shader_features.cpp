@@ -64,6 +64,8 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.has_textures, needed.has_textures) &&
          ok(program.env_textured, needed.env_textured) && ok(program.thin_lens, needed.thin_lens) &&
          ok(program.has_coverage, needed.has_coverage) &&
+         ok(program.loop_traversal, needed.loop_traversal) &&
+         ok(program.bvh_traversal, needed.bvh_traversal) &&
          (needed.material_types & ~program.material_types) == 0;
 }
 
@@ -81,6 +83,8 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.uses(MaterialType::reflective), "GLINT_NO_REFLECTIVE");
   define(f.uses(MaterialType::glossy), "GLINT_NO_GLOSSY");
   define(f.uses(MaterialType::transparent), "GLINT_NO_TRANSPARENT");
+  define(f.loop_traversal, "GLINT_NO_LOOP");
+  define(f.bvh_traversal, "GLINT_NO_BVH");
   return out;
 }
 

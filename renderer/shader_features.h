@@ -20,6 +20,11 @@ struct ShaderFeatures {
   bool thin_lens = true;      // aperture_radius > 0
   bool has_coverage = true;   // a used material has opacity < 1 or a colour texture with alpha
   uint32_t material_types = 0xF;  // bit (1 << int(MaterialType)) per type used by a primitive
+  // Closest hits by the loop over all shapes, by the BVH (shaders/lib/bvh.glsl). The scene alone
+  // does not decide (the render options may force one): scene_features keeps both, and the
+  // renderer keeps the one it uses (renderer/bvh.h, use_bvh). With both, u_use_bvh chooses.
+  bool loop_traversal = true;
+  bool bvh_traversal = true;
 
   bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
   bool operator==(const ShaderFeatures&) const = default;

@@ -11,6 +11,9 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/bvh.h"
+#include "renderer/gpu_scene.h"
+
 namespace glint::gpu {
 
 using namespace glm;  // vec3, dot, cross, normalize, clamp, mix, floatBitsToInt, ...
@@ -28,6 +31,19 @@ struct EnvironmentTablesView {
   const float* conditional_cdf = nullptr;  // height rows of width + 1 entries
 };
 inline thread_local EnvironmentTablesView environment_tables;
+
+// The scene that shaders/lib/bvh.glsl queries on the CPU (the shader reads the same arrays from
+// its storage buffers): the packed shapes and, for closest_hit_bvh, the hierarchy of
+// renderer/bvh.h. One per thread.
+struct SceneView {
+  const glint::GpuSphere* spheres = nullptr;
+  int sphere_count = 0;
+  const glint::GpuQuad* quads = nullptr;
+  int quad_count = 0;
+  const glint::GpuBvhNode* nodes = nullptr;
+  const int32_t* primitives = nullptr;
+};
+inline thread_local SceneView scene_view;
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -49,6 +65,23 @@ float env_conditional_cdf(int row, int i) {
   return environment_tables.conditional_cdf[std::size_t(row) * (environment_tables.width + 1) + i];
 }
 #include "shaders/lib/environment_sampling.glsl"
+#include "shaders/lib/bvh.glsl"
+int scene_sphere_count() { return scene_view.sphere_count; }
+int scene_quad_count() { return scene_view.quad_count; }
+float scene_sphere_hit(int i, Ray ray, float tmax) {
+  vec4 s = scene_view.spheres[i].center_radius;
+  return intersect_sphere(ray, vec3(s), s.w, 0.0f, tmax);
+}
+float scene_quad_hit(int i, Ray ray, float tmax) {
+  const glint::GpuQuad& q = scene_view.quads[i];
+  return intersect_quad(ray, vec3(q.p0), vec3(q.p1), vec3(q.p2), vec3(q.p3), vec2(q.uv01), vec2(q.uv01.z, q.uv01.w),
+                        vec2(q.uv23), vec2(q.uv23.z, q.uv23.w), 0.0f, tmax).t;
+}
+BvhNode bvh_node(int i) {
+  const glint::GpuBvhNode& n = scene_view.nodes[i];
+  return BvhNode(n.lo, n.first, n.hi, n.count);
+}
+int bvh_primitive(int i) { return scene_view.primitives[i]; }
 }  // namespace
 #pragma GCC diagnostic pop
 

@@ -2,10 +2,11 @@
 // (renderer/shader_features.cpp inserts `#define GLINT_NO_...` lines here for what the scene
 // lacks; none defined is the generic program.)
 // Path tracing pass: adds u_samples_per_pass samples to every pixel's running mean.
-// Accumulation texel: rgb = mean of the finite samples so far, a = count of non-finite
-// samples discarded; compensation texel: rgb = the low-order part of the mean that float32
-// could not hold (Kahan), a unused. The pass reads the previous accumulation and compensation
-// and writes the next ones (ping-pong); the exact sample count lives on the CPU.
+// Accumulation texel: rgb = mean of the finite samples so far, a = count of samples discarded
+// (non-finite, or cut short by the BVH step cap); compensation texel: rgb = the low-order part
+// of the mean that float32 could not hold (Kahan), a unused. The pass reads the previous
+// accumulation and compensation and writes the next ones (ping-pong); the exact sample count
+// lives on the CPU.
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/sobol.glsl"
@@ -15,6 +16,7 @@
 #include "lib/camera.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/lights.glsl"
+#include "lib/bvh.glsl"
 
 struct GpuSphere {
   vec4 center_radius;
@@ -47,6 +49,9 @@ struct GpuLight {
 
 layout(std430, binding = 3) readonly buffer LayerSizes { ivec4 layer_sizes[]; };
 layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
+// The BVH of renderer/bvh.h (bound only when u_use_bvh).
+layout(std430, binding = 6) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 7) readonly buffer BvhPrimitives { int bvh_primitives[]; };
 
 layout(binding = 0) uniform sampler2D u_previous;
 layout(binding = 3) uniform sampler2D u_previous_compensation;
@@ -60,6 +65,11 @@ uniform uint u_seed;
 uniform int u_max_bounces;
 uniform int u_sphere_count;
 uniform int u_quad_count;
+// Closest hits by BVH traversal instead of the loop over every shape (the renderer decides from
+// the scene); a traversal visits at most u_bvh_max_steps nodes (renderer/loop_budget.h).
+// Specialised programs compile only one of the two (GLINT_NO_BVH, GLINT_NO_LOOP).
+uniform bool u_use_bvh;
+uniform int u_bvh_max_steps;
 uniform vec3 u_cam_origin;
 uniform vec3 u_cam_right;
 uniform vec3 u_cam_up;
@@ -151,43 +161,64 @@ struct SceneHit {
   int light;  // index into lights[] when the shape emits, else -1
 };
 
+// The scene as shaders/lib/bvh.glsl reads it.
+int scene_sphere_count() { return u_sphere_count; }
+int scene_quad_count() { return u_quad_count; }
+float scene_sphere_hit(int i, Ray ray, float tmax) {
+  vec4 s = spheres[i].center_radius;
+  return intersect_sphere(ray, s.xyz, s.w, 0.0, tmax);
+}
+float scene_quad_hit(int i, Ray ray, float tmax) {
+  GpuQuad q = quads[i];
+  return intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
+                        q.uv23.xy, q.uv23.zw, 0.0, tmax).t;
+}
+BvhNode bvh_node(int i) { return bvh_nodes[i]; }
+int bvh_primitive(int i) { return bvh_primitives[i]; }
+
+// Set when a BVH traversal of this sample stopped at its step cap: the sample is discarded
+// (counted with the non-finite ones) rather than added with a possibly wrong hit.
+bool g_incomplete;
+
+PrimitiveHit closest_primitive(Ray ray) {
+#if defined(GLINT_NO_BVH)
+  return closest_hit_loop(ray, 1e30);
+#else
+#if !defined(GLINT_NO_LOOP)
+  if (!u_use_bvh) return closest_hit_loop(ray, 1e30);
+#endif
+  PrimitiveHit h = closest_hit_bvh(ray, 1e30, u_bvh_max_steps);
+  if (!h.complete) g_incomplete = true;
+  return h;
+#endif
+}
+
 SceneHit intersect_scene(Ray ray) {
   SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1, -1);
-  int sphere_index = -1;
-  for (int i = 0; i < u_sphere_count; ++i) {
-    vec4 s = spheres[i].center_radius;
-    float t = intersect_sphere(ray, s.xyz, s.w, 0.0, hit.t);
-    if (t != NO_HIT) {
-      hit.t = t;
-      sphere_index = i;
-    }
-  }
-  int quad_index = -1;
-  for (int i = 0; i < u_quad_count; ++i) {
-    GpuQuad q = quads[i];
+  PrimitiveHit closest = closest_primitive(ray);
+  if (closest.ref < 0) return hit;
+  hit.t = closest.t;
+  if (closest.ref >= u_sphere_count) {
+    GpuQuad q = quads[closest.ref - u_sphere_count];
+    // The quad's nearest hit again, for its texture coordinates and point (the same t: the
+    // test's result does not depend on tmax beyond it).
     QuadHit h = intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
-                               q.uv23.xy, q.uv23.zw, 0.0, hit.t);
-    if (h.t != NO_HIT) {
-      hit.t = h.t;
-      hit.uv = h.uv;
-      hit.position = h.position;
-      quad_index = i;
-    }
-  }
-  if (quad_index >= 0) {
-    GpuQuad q = quads[quad_index];
+                               q.uv23.xy, q.uv23.zw, 0.0, 1e30);
+    hit.uv = h.uv;
+    hit.position = h.t != NO_HIT ? h.position : ray.origin + hit.t * ray.direction;
     hit.normal = q.normal.xyz;
     hit.error_scale = quad_error_scale(q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz);
     hit.material = q.material.x;
     hit.light = q.material.y;
-  } else if (sphere_index >= 0) {
-    vec4 s = spheres[sphere_index].center_radius;
+  } else {
+    GpuSphere sphere = spheres[closest.ref];
+    vec4 s = sphere.center_radius;
     hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
     hit.error_scale = sphere_error_scale(s.xyz, s.w);
     hit.normal = normalize(hit.position - s.xyz);
     hit.uv = direction_to_uv(hit.normal);
-    hit.material = spheres[sphere_index].material.x;
-    hit.light = spheres[sphere_index].material.y;
+    hit.material = sphere.material.x;
+    hit.light = sphere.material.y;
   }
   return hit;
 }
@@ -416,6 +447,7 @@ void main() {
   for (int s = 0; s < u_samples_per_pass; ++s) {
     g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
     g_sample_index = u_samples_before + uint(s);
+    g_incomplete = false;
     vec2 jitter = sample_2d(0u);
     vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);
     vec2 lens = sample_2d(1u);
@@ -423,7 +455,7 @@ void main() {
     // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
     float lum = luminance(l);
     if (u_clamp > 0.0 && lum > u_clamp) l *= u_clamp / lum;
-    if (is_finite(l)) {
+    if (is_finite(l) && !g_incomplete) {
       deviation_sum += l - previous.rgb;
       ++finite_count;
     }

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 
 #include "renderer/camera_frame.h"
+#include "renderer/loop_budget.h"
 #include "renderer/project_file.h"
 #include "tests/gl/gl_test_support.h"
 
@@ -530,6 +532,54 @@ TEST(hard_LoopLimit, OnePassOfManySamplesMatchesManySmallPasses) {
     for (int x = 0; x < 16; ++x) d2 += std::pow(lum(one, x, y) - lum(many, x, y), 2);
   std::printf("one pass %.5f, ten passes %.5f, rms pixel difference %.3g\n", mean_one, mean_many, std::sqrt(d2 / n));
   EXPECT_LT(std::sqrt(d2 / n), 1e-3 * std::max(mean_one, 1e-3));
+}
+
+// A scene the loop cannot render on llvmpipe (10^4 spheres, 8 bounces: one sample of the loop
+// would run ~3 x 10^5 iterations): the renderer picks the BVH by itself, whose capped traversal
+// keeps a sample within the limit (loop_budget.h). One pass of many samples must equal passes
+// of few (as above), no sample may be discarded (none reached the step cap) or be non-finite.
+TEST(hard_LoopLimit, BvhSceneOfTenThousandSpheres) {
+  ensure_gl_context();
+  Scene s = empty_scene();
+  s.camera.position = {0, 12, 30};
+  s.camera.target = {0, 0, 0};
+  s.environment.color = {0.6f, 0.7f, 0.9f};
+  Material matte, lamp;
+  matte.name = "matte";
+  lamp.name = "lamp";
+  lamp.emission = {4, 3, 2};
+  s.materials = {matte, lamp};
+  for (int i = 0; i < 10000; ++i) {
+    Sphere sp;
+    sp.name = "s" + std::to_string(i);
+    sp.center = {(i % 100) * 0.5f - 25, 0.25f * float((i * 7) % 3), (i / 100) * 0.5f - 25};
+    sp.radius = 0.2f;
+    sp.material = i % 50 == 0 ? "lamp" : "matte";
+    s.spheres.push_back(sp);
+  }
+  EXPECT_GT(loop_iterations_per_sample(10000, s.render.max_bounces), kLlvmpipeLoopLimit);
+  auto render_passes = [&](int passes, int spp) {
+    GpuRenderer r;
+    r.sync(s, 16, 16);
+    EXPECT_TRUE(r.uses_bvh());
+    EXPECT_FALSE(r.exceeds_llvmpipe_loop_limit());
+    for (int i = 0; i < passes; ++i) r.trace(spp);
+    return r.read_accumulation();
+  };
+  Image one = render_passes(1, 64), many = render_passes(8, 8);
+  ASSERT_TRUE(all_finite(one));
+  EXPECT_EQ(max_alpha(one), 0.0);
+  EXPECT_EQ(max_alpha(many), 0.0);
+  double mean = 0, d2 = 0;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      mean += lum(one, x, y) / 256;
+      d2 += std::pow(lum(one, x, y) - lum(many, x, y), 2);
+    }
+  std::printf("mean %.5f, rms pixel difference %.3g\n", mean, std::sqrt(d2 / 256));
+  EXPECT_GT(mean, 0.0);
+  // Same bound and reason as OnePassOfManySamplesMatchesManySmallPasses.
+  EXPECT_LT(std::sqrt(d2 / 256), 1e-3 * std::max(mean, 1e-3));
 }
 
 }  // namespace

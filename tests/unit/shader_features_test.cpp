@@ -122,5 +122,20 @@ TEST(ShaderFeatures, CoversMeansEveryNeededFeatureIsCompiledIn) {
   EXPECT_FALSE(covers(other_type, needed));
 }
 
+TEST(ShaderFeatures, TraversalDefinesAndCover) {
+  ShaderFeatures loop = generic_features(), bvh = generic_features();
+  loop.bvh_traversal = false;
+  bvh.loop_traversal = false;
+  EXPECT_EQ(shader_defines(loop), "#define GLINT_NO_BVH\n");
+  EXPECT_EQ(shader_defines(bvh), "#define GLINT_NO_LOOP\n");
+  EXPECT_TRUE(covers(generic_features(), loop));
+  EXPECT_TRUE(covers(generic_features(), bvh));
+  EXPECT_FALSE(covers(loop, bvh));
+  EXPECT_FALSE(covers(bvh, loop));
+  // The scene alone keeps both (the renderer narrows them).
+  Scene s;
+  EXPECT_TRUE(scene_features(s).loop_traversal && scene_features(s).bvh_traversal);
+}
+
 }  // namespace
 }  // namespace glint
