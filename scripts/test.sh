@@ -11,9 +11,14 @@ if [ "${1:-}" = --quick ]; then
   quick=1
   shift
 fi
-# Each stage says how long the run has taken so far, in wall-clock and in CPU time (user and
-# system, of the finished commands): on a shared machine the second is the steadier measure.
-stage() { echo "== test.sh: $1 (${SECONDS} s so far; CPU user, system: $(times | tail -n 1))" >&2; }
+# Each stage says how long the run has taken so far, in wall-clock and in CPU time (user plus
+# system of the finished commands, from /proc: cutime and cstime): on a shared machine the
+# second is the steadier measure.
+stage() {
+  local stat
+  read -ra stat </proc/$$/stat
+  echo "== test.sh: $1 (${SECONDS} s so far, CPU $(((stat[15] + stat[16]) / $(getconf CLK_TCK))) s)" >&2
+}
 stage "build"
 bash scripts/build.sh
 stage "tests"
