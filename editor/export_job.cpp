@@ -20,8 +20,13 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 std::string validate_export_settings(const ExportSettings& s) {
-  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384)
-    return "the size must be from 1 to 16384 pixels per side";
+  // The loader's film limits and message (project_file.h): an export renders with a second
+  // GpuRenderer of this size, whose GPU buffers the same estimate covers.
+  if (const auto problem = check_film_size(s.width, s.height)) {
+    const std::string& key = problem->json_path;
+    return (key == "film.width" ? "the width " : key == "film.height" ? "the height " : "") +
+           problem->problem;
+  }
   if (!s.use_time && s.samples < 1) return "samples per pixel must be at least 1";
   if (s.use_time && !(s.seconds > 0 && std::isfinite(s.seconds))) return "the time budget must be positive";
   if (s.output.empty()) return "no output file chosen";

@@ -26,7 +26,8 @@ struct ExportSettings {
   RenderOptions estimator;        // the viewport's (set when the export starts)
 };
 
-// "" when valid, else the problem (shown in the dialog before starting).
+// "" when valid, else the problem (shown in the dialog before starting). The size has the
+// limits of a project's film (check_film_size, with its GPU memory estimate).
 std::string validate_export_settings(const ExportSettings& settings);
 
 class ExportJob {

@@ -538,6 +538,8 @@ std::string project_file_text(const Scene& scene) {
 Scene rebase_asset_paths(const Scene& scene, const fs::path& new_base_dir) {
   Scene out = scene;
   out.base_dir = new_base_dir;
+  // The same path is the same folder: no file system calls (the fuzz target saves every input).
+  if (scene.base_dir == new_base_dir) return out;
   const fs::path from = folder_identity(scene.base_dir), to = folder_identity(new_base_dir);
   if (from == to) return out;  // same folder: keep the paths exactly as they are
   for (Texture& t : out.textures) t.path = rebase_path(t.path, from, to);
@@ -593,24 +595,28 @@ Scene load_project(const fs::path& file) {
   }
 }
 
-void save_project(const Scene& scene, const fs::path& file) {
+std::string save_project_text(const Scene& scene, const fs::path& file) {
   const std::string label = file.string();
-  fs::path tmp = file;
-  tmp += ".tmp";
-  std::string text, error;
   try {
     const Scene rebased = rebase_asset_paths(scene, fs::absolute(file).parent_path());
     // JSON text is UTF-8: a path from a folder named in another encoding cannot be stored.
     if (const std::string bad = first_non_utf8_string(rebased); !bad.empty())
       throw ProjectError(label, bad, "is not valid UTF-8, which a JSON file cannot hold "
                                      "(rename the file or folder)");
-    text = project_file_text(rebased);
+    return project_file_text(rebased);
   } catch (const ProjectError&) {
     throw;
   } catch (const std::exception& e) {  // invalid UTF-8 in a name, or a filesystem error
     throw ProjectError(label, "", std::string("cannot write the scene: ") + e.what());
   }
-  error = write_file_synced(tmp, text);
+}
+
+void save_project(const Scene& scene, const fs::path& file) {
+  const std::string label = file.string();
+  fs::path tmp = file;
+  tmp += ".tmp";
+  const std::string text = save_project_text(scene, file);
+  std::string error = write_file_synced(tmp, text);
   std::error_code ec;
   if (error.empty()) {
     fs::rename(tmp, file, ec);

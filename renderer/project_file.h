@@ -72,7 +72,8 @@ std::string project_file_text(const Scene& scene);
 
 // The scene with base_dir set to new_base_dir and its relative asset paths (textures[].path,
 // environment.texture) rewritten to point at the same files from there; absolute paths are
-// kept. When both folders are the same (after resolving symlinks) the paths are kept verbatim.
+// kept. When both folders are the same (the same path, or the same after resolving symlinks)
+// the paths are kept verbatim.
 // The editor's "Save As" applies this to its document after save_project.
 Scene rebase_asset_paths(const Scene& scene, const std::filesystem::path& new_base_dir);
 
@@ -85,16 +86,21 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files = 
 // The problem with a width x height film (file name empty; JSON path film.width, film.height or
 // film), or nullopt when it is within the limits above. Sizes too large say how much GPU memory
 // they would take: "film.width: must be an integer in [1, 16384] (got 100000); a 100000x100000
-// film would need 633.3 GiB of GPU buffers (68 bytes per pixel), the limit is 4.25 GiB
+// film would need 633.3 GiB of GPU buffers (68 bytes per pixel), the limit is 4.2 GiB
 // (67108864 pixels, e.g. 8192x8192)".
 std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
 
-// Writes atomically: FILE.tmp beside the target, fsync, then rename over the target. Relative
-// asset paths are rewritten relative to the new file's folder when it differs from
-// scene.base_dir. Does not validate (the UI validates edits; the loader reports anything bad).
-// Throws ProjectError (with the file name) on IO failure, and with the JSON path of a string
-// that is not valid UTF-8 (a texture path in a folder named in another encoding: JSON text
-// cannot hold it); no FILE.tmp is left behind.
+// The text that save_project writes to `file`, without writing anything (the in-memory half of
+// save_project; load_project_text is the other direction). Relative asset paths are rewritten
+// relative to the file's folder when it differs from scene.base_dir. Does not validate (the UI
+// validates edits; the loader reports anything bad). Throws ProjectError (with the file name)
+// with the JSON path of a string that is not valid UTF-8 (a texture path in a folder named in
+// another encoding: JSON text cannot hold it).
+std::string save_project_text(const Scene& scene, const std::filesystem::path& file);
+
+// Writes save_project_text(scene, file) atomically: FILE.tmp beside the target, fsync, then
+// rename over the target. Throws ProjectError (with the file name) on IO failure and for the
+// problems of save_project_text; no FILE.tmp is left behind.
 void save_project(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace glint

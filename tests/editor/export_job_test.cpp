@@ -122,7 +122,29 @@ TEST_F(ExportJobTest, RejectsBadSettingsBeforeRendering) {
   EXPECT_NE(validate_export_settings(s).find("does not exist"), std::string::npos);
   s.output = dir_ / "x.png";
   s.width = 0;
-  EXPECT_NE(validate_export_settings(s), "");
+  EXPECT_EQ(validate_export_settings(s), "the width must be an integer in [1, 16384] (got 0)");
+}
+
+// The export refuses what the project loader refuses, with the same memory estimate
+// (check_film_size): 16384 x 16384 is within the side limit but needs 17 GiB of GPU buffers.
+TEST_F(ExportJobTest, RefusesSizesOverTheFilmMemoryLimit) {
+  ExportSettings s;
+  s.output = dir_ / "x.png";
+  s.width = 16384;
+  s.height = 16384;
+  const std::string expected =
+      "a 16384x16384 film would need 17.0 GiB of GPU buffers (68 bytes per pixel), the limit is "
+      "4.2 GiB (67108864 pixels, e.g. 8192x8192)";
+  EXPECT_EQ(validate_export_settings(s), expected);
+  EXPECT_EQ(validate_export_settings(s), check_film_size(16384, 16384)->problem);
+  EXPECT_THROW(ExportJob(scene_, s), std::runtime_error);
+  s.height = 16385;
+  EXPECT_EQ(validate_export_settings(s).rfind("the height must be an integer in [1, 16384] (got 16385); a 16384x16385 film would need", 0), 0u);
+  s.width = 8192;  // exactly the limit: accepted
+  s.height = 8192;
+  EXPECT_EQ(validate_export_settings(s), "");
+  s.width = 8193;
+  EXPECT_NE(validate_export_settings(s).find("would need"), std::string::npos);
 }
 
 }  // namespace

@@ -1,24 +1,32 @@
 // libFuzzer target: a project file's bytes through the loader (parse, types, validation), and
-// a loaded scene through save and load again. Any input must either load a scene that validates
-// or throw ProjectError; anything else (a crash, a sanitizer report, another exception, a round
-// trip that differs) is a finding. Image files are not opened (check_files false): reading the
-// example assets for every input would cost most of the time, and fuzz_image covers the readers.
+// a loaded scene through save and load again, all in memory: load_project_text, then
+// save_project_text (what save_project would write beside it, with its UTF-8 check), then
+// load_project_text of that text. Any input must either load a scene that validates or throw
+// ProjectError; anything else (a crash, a sanitizer report, another exception, a save that
+// fails, a round trip that differs) is a finding. Nothing touches the file system per input:
+// image files are not opened (check_files false; fuzz_image covers the readers) and the scene
+// is saved to the folder it was loaded from, so asset paths are not rebased.
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "renderer/project_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const std::filesystem::path dir = GLINT_PROJECTS_DIR;
+  static const std::filesystem::path file = dir / "fuzz.glint";
   const std::string text(reinterpret_cast<const char*>(data), size);
+  glint::Scene scene;
   try {
-    const glint::Scene scene = glint::load_project_text(text, "fuzz.glint", GLINT_PROJECTS_DIR, false);
-    if (!glint::validate_scene(scene, false).empty()) std::abort();  // a half-valid scene
-    // What loads must save: the canonical text loads back to the same scene.
-    const glint::Scene again = glint::load_project_text(glint::project_file_text(scene),
-                                                        "again.glint", GLINT_PROJECTS_DIR, false);
-    if (!(again == scene)) std::abort();
+    scene = glint::load_project_text(text, "fuzz.glint", dir, false);
   } catch (const glint::ProjectError&) {
+    return 0;  // refused with a message: fine
   }
+  if (!glint::validate_scene(scene, false).empty()) std::abort();  // a half-valid scene
+  // What loads must save, and the saved text must load back to the same scene.
+  const std::string saved = glint::save_project_text(scene, file);  // throws: a finding
+  const glint::Scene again = glint::load_project_text(saved, "again.glint", dir, false);
+  if (!(again == scene)) std::abort();
   return 0;
 }

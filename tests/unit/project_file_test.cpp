@@ -531,6 +531,38 @@ TEST(ProjectFile, SaveAsRewritesRelativeAssetPaths) {
   EXPECT_EQ(load_project(old_dir / "same.glint").textures[0].path, "./assets/../assets/wood.png");
 }
 
+// The in-memory pair (the fuzz target's round trip): save_project_text is byte for byte what
+// save_project writes, rebased the same way, and writes nothing; load_project_text reads it back.
+TEST(ProjectFile, SavesAndLoadsInMemoryAsThroughFiles) {
+  TempDir dir;
+  const fs::path old_dir = dir.path() / "a", new_dir = dir.path() / "b";
+  write_assets(old_dir);
+  fs::create_directories(new_dir);
+  const Scene scene = full_scene(old_dir);
+  EXPECT_EQ(save_project_text(scene, old_dir / "scene.glint"), project_file_text(scene));
+  const std::string text = save_project_text(scene, new_dir / "copy.glint");
+  EXPECT_FALSE(fs::exists(new_dir / "copy.glint"));
+  EXPECT_TRUE(fs::is_empty(new_dir));
+  save_project(scene, new_dir / "copy.glint");
+  EXPECT_EQ(read_text(new_dir / "copy.glint"), text);
+  EXPECT_NE(text.find("\"../a/assets/wood.png\""), std::string::npos);
+  const Scene from_text = load_project_text(text, "copy.glint", new_dir);
+  expect_same_scene(from_text, load_project(new_dir / "copy.glint"));
+  EXPECT_EQ(from_text.base_dir, new_dir);
+
+  // A name that JSON text cannot hold fails in memory as it does when saving, naming the file.
+  Scene bad = scene;
+  bad.spheres[0].name = "\xff";
+  try {
+    (void)save_project_text(bad, new_dir / "bad.glint");
+    ADD_FAILURE() << "invalid UTF-8 was saved";
+  } catch (const ProjectError& e) {
+    EXPECT_EQ(e.file, (new_dir / "bad.glint").string());
+    EXPECT_EQ(e.json_path, "spheres[0].name");
+  }
+  EXPECT_FALSE(fs::exists(new_dir / "bad.glint"));
+}
+
 TEST(ProjectFile, ValidatesScenesEditedThroughTheApi) {
   Scene scene;
   EXPECT_TRUE(validate_scene(scene).empty());
