@@ -27,7 +27,9 @@ stage "tests"
 
 # Sanitizers (README, Tests): every unit, editor and GL test but the real window
 # (editor.window_smoke: it needs the glint executable, not built here) and the scalability test
-# unit.MalformedInput.AMillionSpheresLoad (minutes under ASan). The tests that make a GL context
+# unit.MalformedInput.AMillionSpheresLoad (minutes under ASan), the soak (gl.Soak.*: it bounds
+# heap and RSS, which ASan's allocator changes) and the frame-time test editor.BvhDrag.*
+# (CMakePresets.json filters). The tests that make a GL context
 # run with leak detection off (tests/sanitizers/lsan.supp says why).
 stage "sanitizer build"
 cmake --preset asan >/dev/null

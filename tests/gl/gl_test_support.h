@@ -1,6 +1,7 @@
 // Shared set-up for GL tests: one headless context per process, small scenes, image stats.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -53,6 +54,18 @@ Stats channel_stats(const Image& img, int c, Pred use) {
     s.variance = std::max(0.0, sum2 / s.count - s.mean * s.mean);
   }
   return s;
+}
+
+// The largest difference of a colour channel between two images, relative to b's value (at
+// least 1e-3); alpha (the discarded-sample count) is skipped.
+inline double max_relative_difference(const Image& a, const Image& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    double d = std::abs(double(a.pixels[i]) - b.pixels[i]);
+    worst = std::max(worst, d / std::max(1e-3, std::abs(double(b.pixels[i]))));
+  }
+  return worst;
 }
 
 inline bool all_finite(const Image& img) {

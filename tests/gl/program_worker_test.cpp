@@ -43,18 +43,6 @@ bool wait_done(const ProgramJob& job, double seconds) {
   return true;
 }
 
-// Same comparison as shader_variants_test: programs differ only by removed branches, so the
-// images agree to float rounding of a few hundred operations (relative 1e-4).
-double max_relative_difference(const Image& a, const Image& b) {
-  double worst = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    double d = std::abs(double(a.pixels[i]) - b.pixels[i]);
-    worst = std::max(worst, d / std::max(1e-3, std::abs(double(b.pixels[i]))));
-  }
-  return worst;
-}
-
 TEST(GlProgramWorker, RendererSwitchesToTheWorkersProgramAndGetsTheSameImage) {
   test::ensure_gl_context();
   WorkerFixture f;
@@ -81,7 +69,9 @@ TEST(GlProgramWorker, RendererSwitchesToTheWorkersProgramAndGetsTheSameImage) {
   GpuRenderer g(generic);
   g.sync(scene, 16, 16);
   for (int64_t i = 0; i < r.sample_count(); ++i) g.trace(1);
-  EXPECT_LE(max_relative_difference(r.read_accumulation(), g.read_accumulation()), 1e-4);
+  // As in shader_variants_test: programs that differ only by removed branches agree to float
+  // rounding of a few hundred operations (relative 1e-4).
+  EXPECT_LE(test::max_relative_difference(r.read_accumulation(), g.read_accumulation()), 1e-4);
 }
 
 TEST(GlProgramWorker, ReportsACompileErrorWithTheDriversLog) {

@@ -21,15 +21,6 @@ namespace {
 // pixels and 4 spp none does here, so a failure means the programs really differ.
 constexpr double kRelativeTolerance = 1e-4;
 
-double max_relative_difference(const Image& a, const Image& b) {
-  double worst = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    if (i % 4 == 3) continue;
-    double d = std::abs(double(a.pixels[i]) - b.pixels[i]);
-    worst = std::max(worst, d / std::max(1e-3, std::abs(double(b.pixels[i]))));
-  }
-  return worst;
-}
 
 Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised) {
   GpuRendererOptions options;
@@ -66,7 +57,7 @@ TEST(GlShaderVariants, EveryProjectRendersTheSameSpecialisedAndGeneric) {
     needed.loop_traversal = !needed.bvh_traversal;
     EXPECT_EQ(specialised, shader_defines(needed) != "")
         << "every pass should use the specialised program when the scene lacks a feature";
-    double diff = max_relative_difference(special, generic);
+    double diff = test::max_relative_difference(special, generic);
     EXPECT_LE(diff, kRelativeTolerance);
     char text[32];
     std::snprintf(text, sizeof text, "%.3g", diff);
@@ -115,7 +106,7 @@ TEST(GlShaderVariants, SwitchesToTheSpecialisedProgramWhenItIsReady) {
   for (int64_t i = 0; i < r.sample_count() - 2; ++i) g.trace(1);
   g.trace(2);
   EXPECT_TRUE(g.last_pass_generic());
-  EXPECT_LE(max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance);
+  EXPECT_LE(test::max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance);
 }
 
 TEST(GlShaderVariants, StructuralEditFallsBackToGenericUntilItsVariantIsReady) {
@@ -139,7 +130,7 @@ TEST(GlShaderVariants, StructuralEditFallsBackToGenericUntilItsVariantIsReady) {
   GpuRenderer g(generic);
   g.sync(scene, 16, 16);
   g.trace(1);
-  EXPECT_LE(max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance)
+  EXPECT_LE(test::max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance)
       << "the image while the new variant compiles";
   EXPECT_GE(passes_until_specialised(r), 0);
   EXPECT_EQ(r.last_pass_defines().find("GLINT_NO_TEXTURES"), std::string::npos);
