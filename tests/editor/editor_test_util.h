@@ -8,29 +8,9 @@
 #include <gtest/gtest.h>
 
 #include "renderer/project_file.h"
+#include "tests/temp_dir.h"
 
 namespace glint::test {
-
-// A fresh folder under the system temp folder, removed with its contents at the end.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "glint-editor-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // All problems of validate_scene joined, "" when valid (so a failure shows them).
 inline std::string problems(const Scene& scene, bool check_files = false) {

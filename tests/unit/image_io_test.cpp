@@ -15,32 +15,14 @@
 
 #include "renderer/image.h"
 #include "renderer/procedural_assets.h"
+#include "tests/temp_dir.h"
 
 namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh folder under the system temporary directory, removed with everything in it.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("glint-image-test-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // A deterministic test pattern with distinct values in every channel.
 Image pattern(int width, int height, float scale, bool with_alpha) {

@@ -10,6 +10,7 @@
 
 #include "renderer/json_fields.h"
 #include "renderer/project_file.h"
+#include "tests/temp_dir.h"
 
 namespace glint {
 namespace {
@@ -17,24 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-// A fresh folder under the system's temporary folder, removed with everything in it.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device random;
-    path_ = fs::temp_directory_path() /
-            ("glint_project_test_" + std::to_string(::getpid()) + "_" + std::to_string(random()));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 void write_text(const fs::path& file, const std::string& text) {
   fs::create_directories(file.parent_path());
