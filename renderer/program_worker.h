@@ -6,7 +6,7 @@
 // first draw that uses it (0.6-1.0 s cold). Either, on the editor's thread, freezes the UI after
 // a structural edit. Done here, the link and the first-draw compile happen off the UI thread;
 // llvmpipe keeps the compiled code in its shader cache, so the renderer's own first draw with
-// the program then takes milliseconds (measured in README, "Specialised trace programs").
+// the program then takes milliseconds (gl.GlProgramWorker.*; figures in the README).
 //
 // The renderer knows nothing of windows: whoever owns the contexts (the editor's GLFW windows,
 // or HeadlessGLContext::create_shared in tests) passes how to bind the shared one.
