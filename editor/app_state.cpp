@@ -216,7 +216,7 @@ bool Autosave::update(const Document& doc, double now_s) {
 }
 
 void Autosave::finish() {
-  discard_recovery(dir_);
+  if (wrote_) discard_recovery(dir_);  // an offered recovery left unanswered stays for next time
   wrote_ = false;
   written_.reset();
 }

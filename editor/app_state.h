@@ -58,7 +58,7 @@ class Autosave {
   explicit Autosave(std::filesystem::path dir = {}, double interval_s = 10);
   // Returns true when it wrote the recovery file this call.
   bool update(const Document& doc, double now_s);
-  // Clean exit: deletes the recovery file.
+  // Clean exit: deletes the recovery file this session wrote (not one offered and unanswered).
   void finish();
   const std::string& last_error() const { return last_error_; }
 

@@ -29,13 +29,14 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kUsage =
-    "usage: glint [PROJECT.glint] [--size WxH] [--screenshot FILE.png [--frames N] [--spp N]]\n"
+    "usage: glint [PROJECT.glint] [--size WxH] [--frames N] [--screenshot FILE.png [--spp N]]\n"
     "\n"
     "Opens the editor (a window: needs a display, e.g. xvfb-run on a server).\n"
     "  --size WxH           window size in screen coordinates (default 1280x800)\n"
-    "  --screenshot FILE    render, save a PNG of the whole window and exit\n"
-    "  --frames N           ... after N frames (default 60 when --spp is not given)\n"
-    "  --spp N              ... once the viewport has N samples per pixel\n";
+    "  --frames N           close after N frames, dropping unsaved changes (for scripts)\n"
+    "  --screenshot FILE    render, save a PNG of the whole window and exit: after --frames N\n"
+    "                       (default 60), or with --spp N once the viewport has N samples per\n"
+    "                       pixel; such runs neither offer a crash recovery nor autosave\n";
 
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "glint: GLFW error %d: %s\n", code, text); }
 
@@ -128,8 +129,8 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
       return std::nullopt;
     }
   }
-  if ((o.frames || o.spp) && o.screenshot.empty()) {
-    error = "--frames and --spp go with --screenshot";
+  if (o.spp && o.screenshot.empty()) {
+    error = "--spp goes with --screenshot";
     return std::nullopt;
   }
   if (!o.screenshot.empty() && !o.frames && !o.spp) o.frames = 60;
@@ -187,14 +188,19 @@ int run_editor(const EditorOptions& options) {
     state.on_opened_or_saved = [&state](const fs::path& f) { state.recent_files = add_recent_file(f); };
     state.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
 
-    // A recovery left by a crashed run is offered first (not in screenshot runs).
-    std::optional<Recovery> recovery = screenshot_mode ? std::nullopt : find_recovery();
-    bool offer_recovery = recovery.has_value();
     if (!options.project.empty() && !open_document(doc, state, options.project)) {
       std::fprintf(stderr, "glint: %s\n", state.error.c_str());
       if (screenshot_mode) exit_code = 1;
     }
-    Autosave autosave({}, 30);
+    // A recovery left by a crashed run is offered (draw_recovery_offer) and this run autosaves,
+    // except in screenshot runs, which leave the user's state alone.
+    if (!screenshot_mode) {
+      state.recovery = find_recovery();
+      if (state.recovery)
+        std::fprintf(stderr, "glint: offering the unsaved work of a run that did not exit cleanly (%s)\n",
+                     state.recovery->file.string().c_str());
+      state.autosave.emplace(fs::path(), 30);
+    }
 
     if (worker_window)
       state.shader_worker = std::make_shared<ProgramWorker>(SharedContextHooks{
@@ -231,27 +237,6 @@ int run_editor(const EditorOptions& options) {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      if (offer_recovery) {
-        ImGui::OpenPopup("Recover unsaved work?");
-        offer_recovery = false;
-      }
-      if (ImGui::BeginPopupModal("Recover unsaved work?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::Text("Glint did not exit cleanly last time.");
-        ImGui::Text("Unsaved changes of %s can be recovered.",
-                    recovery->original.empty() ? "an untitled project" : recovery->original.string().c_str());
-        if (ImGui::Button("Recover", ImVec2(110, 0))) {
-          doc = open_recovery(*recovery);
-          state.thumbnails.clear();
-          discard_recovery();
-          ImGui::CloseCurrentPopup();
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Discard", ImVec2(110, 0))) {
-          discard_recovery();
-          ImGui::CloseCurrentPopup();
-        }
-        ImGui::EndPopup();
-      }
       draw_editor_ui(doc, state);
       doc.end_frame(ImGui::IsAnyItemActive() || state.interacting);
       ImGui::Render();
@@ -281,9 +266,10 @@ int run_editor(const EditorOptions& options) {
         title = t;
         glfwSetWindowTitle(window, title.c_str());
       }
-      if (!screenshot_mode) autosave.update(doc, glfwGetTime());
+      if (state.autosave) state.autosave->update(doc, glfwGetTime());
+      if (!screenshot_mode && options.frames && frame >= options.frames) break;
     }
-    if (!screenshot_mode) autosave.finish();
+    if (state.autosave) state.autosave->finish();
     state.thumbnails.clear();
     state.export_job.reset();
     viewport.reset();

@@ -17,8 +17,10 @@ const char* const kHelp =
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
     "  --size WxH           window size (default 1280x800)\n"
+    "  --frames N           close after N frames, dropping unsaved changes (for scripts)\n"
     "  --screenshot FILE    save a PNG of the window after --frames N (default 60) or once\n"
-    "                       the viewport has --spp N samples per pixel, then exit\n";
+    "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
+    "                       neither offer a crash recovery nor autosave)\n";
 
 }  // namespace
 

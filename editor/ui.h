@@ -2,21 +2,23 @@
 // context (and a current GL context for thumbnails): no GLFW, so tests drive them headlessly.
 //
 // One frame: draw_editor_ui() lays out fixed panels (no docking) and runs them in order:
-// shortcuts, menu bar, outliner, properties, status bar, modals, export dialog, and last the
-// viewport, which handles its mouse input, then calls state.render_viewport (sync, trace,
-// tonemap) and shows the display texture. The caller then ends the frame with
-// doc.end_frame(ImGui::IsAnyItemActive() || state.interacting).
+// shortcuts, menu bar, outliner, properties, status bar, the viewport (which handles its mouse
+// input, then calls state.render_viewport: sync, trace, tonemap, and shows the display
+// texture), the export dialog, the document modals, and last the recovery offer. The caller
+// then ends the frame with doc.end_frame(ImGui::IsAnyItemActive() || state.interacting).
 #pragma once
 
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <imgui.h>
 
+#include "editor/app_state.h"
 #include "editor/document.h"
 #include "editor/export_job.h"
 #include "renderer/render_options.h"
@@ -97,6 +99,12 @@ struct EditorState {
   double message_until = 0;
   std::string error;
   bool open_error = false;
+  bool error_enter_released = false;  // Enter closes the error box only after a release in it
+
+  // Crash recovery: the work a crashed run left, offered once the panels exist (reset when
+  // answered), and this run's autosave (none in tests and screenshot runs).
+  std::optional<Recovery> recovery;
+  std::optional<Autosave> autosave;
 
   // Export.
   bool show_export = false;
@@ -120,9 +128,18 @@ void draw_outliner(Document& doc, EditorState& state);
 void draw_properties(Document& doc, EditorState& state);
 void draw_status_bar(Document& doc, EditorState& state);
 void draw_document_modals(Document& doc, EditorState& state);
+void draw_recovery_offer(Document& doc, EditorState& state);
 void draw_export_dialog(Document& doc, EditorState& state);
 void draw_viewport(Document& doc, EditorState& state);
 void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
+
+// The status bar's line, piece by piece: the frame figures, then an autosave failure (shown
+// until an autosave succeeds), then the transient message or the export's progress.
+struct StatusPiece {
+  std::string text;
+  ImVec4 color;
+};
+std::vector<StatusPiece> status_line(const EditorState& state, double now_s);
 
 // Document actions (menus, keys and tests). request_action asks about unsaved changes first.
 void request_action(Document& doc, EditorState& state, DocAction action, std::filesystem::path path = {});

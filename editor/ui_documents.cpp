@@ -239,14 +239,19 @@ void draw_document_modals(Document& doc, EditorState& state) {
   if (state.open_error) {
     ImGui::OpenPopup(kErrorPopup);
     state.open_error = false;
+    state.error_enter_released = false;
   }
   ImGui::SetNextWindowSize(ImVec2(520, 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(kErrorPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextUnformatted(state.error.c_str());
     ImGui::PopTextWrapPos();
-    if (ImGui::Button("OK", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter)))
-      ImGui::CloseCurrentPopup();
+    // The Enter that confirmed a typed path opens this box in the same frame (and may repeat
+    // while held): only a press that follows a release closes it.
+    const int enter = ImGui::GetKeyIndex(ImGuiKey_Enter);
+    const bool enter_closes = state.error_enter_released && ImGui::IsKeyPressed(enter, false);
+    if (!ImGui::IsKeyDown(enter)) state.error_enter_released = true;
+    if (ImGui::Button("OK", ImVec2(90, 0)) || enter_closes) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
 }

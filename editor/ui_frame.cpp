@@ -12,7 +12,7 @@ constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFl
 
 }  // namespace
 
-void draw_status_bar(Document& doc, EditorState& state) {
+std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
   const FrameStats& s = state.stats;
   char text[512];
   int n = std::snprintf(text, sizeof text, "%lld spp   %.1f spp/s   %.1f ms/frame   %dx%d",
@@ -22,13 +22,25 @@ void draw_status_bar(Document& doc, EditorState& state) {
   if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
     n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));
   std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
-  ImGui::TextUnformatted(text);
-  if (!state.message.empty() && ImGui::GetTime() < state.message_until) {
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(1, 0.85f, 0.4f, 1), "  |  %s", state.message.c_str());
+  std::vector<StatusPiece> pieces{{text, ImGui::GetStyleColorVec4(ImGuiCol_Text)}};
+  if (state.autosave && !state.autosave->last_error().empty())
+    pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1)});
+  if (!state.message.empty() && now_s < state.message_until) {
+    pieces.push_back({"  |  " + state.message, ImVec4(1, 0.85f, 0.4f, 1)});
   } else if (state.export_job && state.export_job->state() == ExportJob::State::running) {
-    ImGui::SameLine();
-    ImGui::TextColored(ImVec4(0.5f, 0.9f, 1, 1), "  |  exporting %.0f%%", state.export_job->progress() * 100);
+    std::snprintf(text, sizeof text, "  |  exporting %.0f%%", state.export_job->progress() * 100);
+    pieces.push_back({text, ImVec4(0.5f, 0.9f, 1, 1)});
+  }
+  return pieces;
+}
+
+void draw_status_bar(Document&, EditorState& state) {
+  const std::vector<StatusPiece> pieces = status_line(state, ImGui::GetTime());
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    if (i > 0) ImGui::SameLine(0, 0);
+    ImGui::PushStyleColor(ImGuiCol_Text, pieces[i].color);
+    ImGui::TextUnformatted(pieces[i].text.c_str());
+    ImGui::PopStyleColor();
   }
 }
 
@@ -69,6 +81,7 @@ void draw_editor_ui(Document& doc, EditorState& state) {
   draw_viewport(doc, state);
   draw_export_dialog(doc, state);
   draw_document_modals(doc, state);
+  draw_recovery_offer(doc, state);
 }
 
 }  // namespace glint

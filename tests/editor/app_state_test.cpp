@@ -162,6 +162,8 @@ TEST(Recovery, AutosaveLeavesAForeignRecoveryAlone) {
   Document fresh;
   autosave.update(fresh, 100);  // clean document: must not delete what it did not write
   EXPECT_TRUE(find_recovery(dir.path()));
+  autosave.finish();  // a clean exit with the offer unanswered: it stays for the next start
+  EXPECT_TRUE(find_recovery(dir.path()));
 }
 
 }  // namespace

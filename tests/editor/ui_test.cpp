@@ -3,10 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
 #include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
 
+#include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
+
+#include "editor/app_state.h"
 #include "editor/picking.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
@@ -25,18 +30,7 @@ class UiTest : public ::testing::Test {
  protected:
   void SetUp() override {
     gl_ = HeadlessGLContext::create();
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(800, 500);
-    io.DeltaTime = 1.0f / 60;
-    unsigned char* pixels;
-    int w, h;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(intptr_t(1)));
-    io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
-    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
-    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+    start_imgui();
     viewport_ = std::make_unique<ViewportRenderer>();
     state_.render_viewport = [this](Document& d, EditorState& s) { viewport_->render(d, s); };
     state_.resolution = ViewportResolution::quarter;  // tiny GL images
@@ -50,12 +44,30 @@ class UiTest : public ::testing::Test {
     ImGui::DestroyContext();
   }
 
+  // A fresh ImGui context, as at the editor's start: no window exists before its first frame.
+  void start_imgui() {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(800, 500);
+    io.DeltaTime = 1.0f / 60;
+    unsigned char* pixels;
+    int w, h;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(intptr_t(1)));
+    io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
+    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
+    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+  }
+
   // One UI frame, as the app runs it.
   void frame() {
     ImGui::NewFrame();
     // Popups are opened at the root of the ID stack, where a frame starts.
     unsaved_prompt_open_ = ImGui::IsPopupOpen("Unsaved changes");
     path_prompt_open_ = ImGui::IsPopupOpen("Choose a file");
+    error_open_ = ImGui::IsPopupOpen("Error");
+    recovery_offer_open_ = ImGui::IsPopupOpen("Recover unsaved work?");
     draw_editor_ui(doc_, state_);
     doc_.end_frame(ImGui::IsAnyItemActive() || state_.interacting);
     ImGui::Render();
@@ -87,6 +99,21 @@ class UiTest : public ::testing::Test {
     frame();
     io.KeyCtrl = false;
   }
+  // Centre of button `n` (each `width` wide) in the last row of the auto-sized popup `name`.
+  ImVec2 popup_button(const char* name, int n, float width) {
+    ImGuiWindow* w = ImGui::FindWindowByName(name);
+    EXPECT_NE(w, nullptr) << name;
+    if (!w) return ImVec2(0, 0);
+    const ImGuiStyle& style = ImGui::GetStyle();
+    return ImVec2(w->Pos.x + style.WindowPadding.x + n * (width + style.ItemSpacing.x) + width / 2,
+                  w->Pos.y + w->Size.y - style.WindowPadding.y - ImGui::GetFrameHeight() / 2);
+  }
+  // The status bar's text (all its pieces).
+  std::string status_text() {
+    std::string text;
+    for (const StatusPiece& p : status_line(state_, ImGui::GetTime())) text += p.text;
+    return text;
+  }
   // The sphere whose centre shows nearest the middle of the viewport (and picks as itself).
   int visible_sphere() {
     int best = -1;
@@ -111,7 +138,7 @@ class UiTest : public ::testing::Test {
   std::unique_ptr<ViewportRenderer> viewport_;
   Document doc_;
   EditorState state_;
-  bool unsaved_prompt_open_ = false, path_prompt_open_ = false;
+  bool unsaved_prompt_open_ = false, path_prompt_open_ = false, error_open_ = false, recovery_offer_open_ = false;
 };
 
 TEST_F(UiTest, ViewportAccumulatesAndFillsTheCentre) {
@@ -326,6 +353,117 @@ TEST_F(UiTest, ExportFromTheEditorRunsInSlices) {
   }
   EXPECT_EQ(state_.export_job->state(), ExportJob::State::done) << state_.export_job->error();
   EXPECT_TRUE(fs::exists(dir / "shot.png"));
+}
+
+// The editor's start while a crashed run's recovery exists, as run_editor does it: a fresh
+// context, the command line's project, the offer set before the first frame. The offer must
+// open (after the panels: opened before them, Dear ImGui 1.86 aborts) and Recover must make the
+// recovered work the open, unsaved document and delete the recovery file.
+TEST_F(UiTest, RecoveryOfferAtStartRecovers) {
+  test::TempDir dir;
+  const fs::path project = kProjects / "default.glint";
+  Document crashed(load_project(project), project);
+  crashed.scene.spheres[0].radius = 0.123f;
+  write_recovery(crashed, dir.path());
+
+  state_.thumbnails.clear();
+  ImGui::DestroyContext();
+  start_imgui();
+  ASSERT_TRUE(open_document(doc_, state_, project));
+  state_.recovery = find_recovery(dir.path());
+  ASSERT_TRUE(state_.recovery);
+  for (int i = 0; i < 4; ++i) frame();
+  EXPECT_TRUE(recovery_offer_open_);
+  EXPECT_FALSE(doc_.dirty());
+  click(popup_button("Recover unsaved work?", 0, 110));
+  frame();
+  EXPECT_FALSE(recovery_offer_open_);
+  EXPECT_FALSE(state_.recovery);
+  EXPECT_EQ(doc_.path(), project);
+  EXPECT_TRUE(doc_.dirty());
+  EXPECT_FLOAT_EQ(doc_.scene.spheres[0].radius, 0.123f);
+  EXPECT_FALSE(fs::exists(recovery_file_path(dir.path())));
+  EXPECT_TRUE(doc_.can_undo());  // back to the file as saved
+}
+
+// Discard deletes the recovery and keeps the open document. An error box already open (a
+// project that failed to open at start) comes first: the offer waits for it to close.
+TEST_F(UiTest, RecoveryOfferWaitsForTheErrorBoxAndDiscards) {
+  test::TempDir dir;
+  Document crashed;
+  add_sphere(crashed.scene);
+  write_recovery(crashed, dir.path());
+  const Scene before = doc_.scene;
+  show_error(state_, "some error");
+  state_.recovery = find_recovery(dir.path());
+  ASSERT_TRUE(state_.recovery);
+  for (int i = 0; i < 3; ++i) frame();
+  EXPECT_TRUE(error_open_);
+  EXPECT_FALSE(recovery_offer_open_);
+  press(GLFW_KEY_ENTER);  // OK
+  frame();
+  EXPECT_FALSE(error_open_);
+  EXPECT_TRUE(recovery_offer_open_);
+  click(popup_button("Recover unsaved work?", 1, 110));
+  frame();
+  EXPECT_FALSE(recovery_offer_open_);
+  EXPECT_FALSE(state_.recovery);
+  EXPECT_FALSE(find_recovery(dir.path()));
+  EXPECT_FALSE(fs::exists(dir / "recovery.json"));
+  EXPECT_EQ(doc_.scene, before);
+  EXPECT_FALSE(doc_.dirty());
+}
+
+// Enter on a typed path that fails to open: the error box opens in that frame and must not
+// take the same press (nor its repeats while the key is held); a new press closes it.
+TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
+  test::TempDir dir;
+  const fs::path missing = dir / "missing.glint";
+  state_.native_dialogs = false;
+  choose_file(doc_, state_, FilePurpose::open_project);
+  std::snprintf(state_.prompt.buffer, sizeof state_.prompt.buffer, "%s", missing.c_str());
+  for (int i = 0; i < 3; ++i) frame();  // the prompt opens and its field takes the keyboard
+  ASSERT_TRUE(path_prompt_open_);
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeysDown[GLFW_KEY_ENTER] = true;
+  for (int i = 0; i < 40; ++i) frame();  // held past the key repeat delay
+  io.KeysDown[GLFW_KEY_ENTER] = false;
+  frame();
+  frame();
+  EXPECT_FALSE(path_prompt_open_);
+  EXPECT_TRUE(error_open_);
+  EXPECT_NE(state_.error.find(missing.string()), std::string::npos) << state_.error;
+  EXPECT_EQ(doc_.path(), kProjects / "default.glint");  // the open document stays
+  press(GLFW_KEY_ENTER);
+  frame();
+  EXPECT_FALSE(error_open_);
+}
+
+// A failing autosave (its state folder cannot be made: a file is in the way) shows in the status
+// line until an autosave succeeds.
+TEST_F(UiTest, AutosaveFailureShowsInTheStatusLine) {
+  test::TempDir dir;
+  std::ofstream(dir / "blocker") << "a file where the state folder's parent should be";
+  state_.autosave.emplace(dir / "blocker" / "glint", /*interval_s=*/0);
+  doc_.scene.spheres[0].radius *= 2;
+  frame();
+  EXPECT_FALSE(state_.autosave->update(doc_, 1));
+  const std::string error = state_.autosave->last_error();
+  ASSERT_NE(error, "");
+  EXPECT_NE(error.find("recovery"), std::string::npos) << error;
+  for (int i = 0; i < 3; ++i) frame();
+  show_message(state_, "Opened something");  // a transient message does not hide it
+  frame();
+  std::string text = status_text();
+  EXPECT_NE(text.find("autosave failed: " + error), std::string::npos) << text;
+  EXPECT_NE(text.find("Opened something"), std::string::npos) << text;
+
+  fs::remove(dir / "blocker");
+  EXPECT_TRUE(state_.autosave->update(doc_, 2));
+  frame();
+  text = status_text();
+  EXPECT_EQ(text.find("autosave failed"), std::string::npos) << text;
+  EXPECT_TRUE(find_recovery(dir / "blocker" / "glint"));
 }
 
 }  // namespace
