@@ -221,8 +221,8 @@ TEST(RenderLog, RefusesToOverwriteTheProjectTheReferenceOrTheOutput) {
     EXPECT_NE(err.find(c.message), std::string::npos) << err;
     EXPECT_EQ(err.find("glint: OpenGL"), std::string::npos) << err;
   }
-  EXPECT_EQ(read_bytes(dir / "furnace.glint"), project_bytes);
-  EXPECT_EQ(read_bytes(dir / "exact.exr"), reference_bytes);
+  EXPECT_TRUE(read_bytes(dir / "furnace.glint") == project_bytes);
+  EXPECT_TRUE(read_bytes(dir / "exact.exr") == reference_bytes);
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(dir / "log.csv"));
 }
