@@ -6,6 +6,7 @@
 
 #include <epoxy/gl.h>
 
+#include "renderer/atomic_file.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
@@ -41,6 +42,10 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
     : scene_(scene), settings_(std::move(settings)) {
   if (std::string problem = validate_export_settings(settings_); !problem.empty())
     throw std::runtime_error(problem);
+  // Once per export, not in validate_export_settings (which the dialog calls every frame): it
+  // creates and removes a file to learn whether the folder is writable.
+  if (const auto problem = file_write_problem(settings_.output))
+    throw std::runtime_error(settings_.output.string() + ": " + *problem);
   auto errors = validate_scene(scene_);
   if (!errors.empty()) throw std::runtime_error(errors.front().what());
   GpuRendererOptions options;

@@ -34,7 +34,8 @@ class ExportJob {
  public:
   enum class State { running, done, cancelled, failed };
 
-  // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting.
+  // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting
+  // and, before rendering, when the output cannot be written (file_write_problem).
   // `worker` (may be null) builds the specialised trace program off the UI thread.
   ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker = nullptr);
   ~ExportJob();

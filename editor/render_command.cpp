@@ -13,10 +13,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <epoxy/gl.h>
 
 #include "editor/progress_bar.h"
+#include "renderer/atomic_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
@@ -25,6 +27,8 @@
 
 namespace glint {
 namespace {
+
+namespace fs = std::filesystem;
 
 const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
@@ -70,7 +74,9 @@ const char* const kUsage =
     "                     would exceed Mesa llvmpipe's shader loop limit), loop (test every\n"
     "                     shape for every ray), or bvh (bounding volume hierarchy, built\n"
     "                     before the clock starts; its build time is printed)\n"
-    "Exit codes: 0 done, 1 bad project or failed render, 2 bad arguments.\n";
+    "Exit codes: 0 done, 1 bad project or failed render (or the output or log could not\n"
+    "be written), 2 bad arguments (also: a --width/--height beyond the film limits, a\n"
+    "--log or -o that would overwrite the project, the reference or each other).\n";
 
 struct Options {
   std::string project;
@@ -199,7 +205,111 @@ int64_t next_checkpoint(int64_t samples, int64_t target) {
   return target > 0 ? std::min(p, target) : p;
 }
 
-using File = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+// The film size of the render: the project's, or the command line's (one side given: the other
+// keeps the film's aspect), within the limits of a project's film (check_film_size) so that a
+// size the GPU cannot hold is refused before anything is allocated.
+std::pair<int, int> render_size(const Options& o, const Film& film) {
+  int64_t width = film.width, height = film.height;
+  if (o.width) width = *o.width;
+  if (o.height) height = *o.height;
+  if (o.width && !o.height)
+    height = std::max<int64_t>(1, std::llround(*o.width * double(film.height) / film.width));
+  if (o.height && !o.width)
+    width = std::max<int64_t>(1, std::llround(*o.height * double(film.width) / film.height));
+  if (!o.width && !o.height) return {film.width, film.height};  // checked by the loader
+  if (const auto problem = check_film_size(width, height)) {
+    const std::string& key = problem->json_path;
+    std::string given;
+    if (o.width) given += "--width " + std::to_string(*o.width);
+    if (o.height) given += (given.empty() ? "" : " ") + ("--height " + std::to_string(*o.height));
+    throw UsageError{given + " gives a " + std::to_string(width) + "x" + std::to_string(height) +
+                     " image: " +
+                     (key == "film.width" ? "the width " : key == "film.height" ? "the height " : "") +
+                     problem->problem};
+  }
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
+
+// A path with its symbolic links resolved as far as they exist (and the last one even when
+// its target does not), for comparing files that may not exist yet.
+fs::path resolved(const fs::path& path) {
+  fs::path p = path;
+  try {
+    p = write_target(path);
+  } catch (const FileWriteError&) {  // a loop: compare the path as given
+  }
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(p, ec);
+  if (ec) return p.lexically_normal();
+  const fs::path canonical = fs::weakly_canonical(absolute, ec);
+  return ec ? absolute.lexically_normal() : canonical;
+}
+
+// Whether two paths name the same file: the same inode where both exist (hard links, bind
+// mounts), else the same resolved path.
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  return resolved(a) == resolved(b);
+}
+
+// Files the command writes must not be the files it reads, nor each other: --log would
+// otherwise truncate the project or the reference before the render, and -o overwrite the
+// reference after it.
+void check_distinct_files(const Options& o) {
+  struct Named {
+    const char* what;
+    const std::string& path;
+  };
+  const Named inputs[] = {{"the project", o.project}, {"the reference", o.reference}};
+  const Named outputs[] = {{"--log", o.log}, {"-o", o.output}};
+  for (const Named& out : outputs) {
+    if (out.path.empty()) continue;
+    for (const Named& in : inputs)
+      if (!in.path.empty() && same_file(out.path, in.path))
+        throw UsageError{std::string(out.what) + " " + out.path + " is " + in.what + " (" + in.path +
+                         "): it would be overwritten"};
+  }
+  if (!o.log.empty() && same_file(o.log, o.output))
+    throw UsageError{"--log " + o.log + " is the output image (-o " + o.output + ")"};
+}
+
+// The convergence log, with every write checked: a full disk or /dev/full fails the command
+// with the OS reason instead of losing rows silently.
+class LogFile {
+ public:
+  explicit LogFile(std::string path) : path_(std::move(path)), file_(std::fopen(path_.c_str(), "w")) {
+    if (!file_) fail();
+  }
+  ~LogFile() {
+    if (file_) std::fclose(file_);
+  }
+  LogFile(const LogFile&) = delete;
+  LogFile& operator=(const LogFile&) = delete;
+
+  // Writes and flushes one line (so a long render can be watched, and an interrupted one
+  // keeps its rows).
+  void write_line(const std::string& line) {
+    if (std::fputs(line.c_str(), file_) == EOF || std::fputc('\n', file_) == EOF ||
+        std::fflush(file_) != 0)
+      fail();
+  }
+  void close() {
+    std::FILE* file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0) fail();
+  }
+
+ private:
+  [[noreturn]] void fail() const {
+    throw std::runtime_error(path_ + ": cannot write the log: " + std::strerror(errno));
+  }
+  std::string path_;
+  std::FILE* file_;
+};
 
 }  // namespace
 
@@ -220,31 +330,21 @@ int run_render_command(int argc, char** argv) {
   }
 
   try {
-    // Fail before rendering, not after, when the image could not be written.
-    auto out_dir = std::filesystem::absolute(o.output).parent_path();
-    if (!std::filesystem::is_directory(out_dir))
-      throw std::runtime_error(o.output + ": the folder " + out_dir.string() + " does not exist");
+    check_distinct_files(o);
+    // Fail before rendering, not after, when the image could not be written: a missing or
+    // read-only folder, a name too long for the file system.
+    if (const auto problem = file_write_problem(o.output))
+      throw std::runtime_error(o.output + ": " + *problem);
     Scene scene = load_project(o.project);
-    int width = scene.film.width, height = scene.film.height;
-    if (o.width && o.height) {
-      width = static_cast<int>(*o.width);
-      height = static_cast<int>(*o.height);
-    } else if (o.width) {
-      width = static_cast<int>(*o.width);
-      height = std::max(1, static_cast<int>(std::lround(*o.width * double(scene.film.height) / scene.film.width)));
-    } else if (o.height) {
-      height = static_cast<int>(*o.height);
-      width = std::max(1, static_cast<int>(std::lround(*o.height * double(scene.film.width) / scene.film.height)));
-    }
+    const auto [width, height] = render_size(o, scene.film);
     if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
 
     std::optional<Image> reference;
-    File log(nullptr, &std::fclose);
+    std::optional<LogFile> log;
     if (!o.log.empty()) {
       reference = load_reference(o.reference, width, height);
-      log.reset(std::fopen(o.log.c_str(), "w"));
-      if (!log) throw std::runtime_error(o.log + ": cannot write the log: " + std::strerror(errno));
-      std::fputs("spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite\n", log.get());
+      log.emplace(o.log);
+      log->write_line("spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite");
     }
 
     auto context = HeadlessGLContext::create();
@@ -300,11 +400,12 @@ int run_render_command(int argc, char** argv) {
         double gpu = renderer.trace_gpu_seconds();
         Image accumulation = renderer.read_accumulation();
         last_metrics = compare_images(accumulation, *reference);
-        std::fprintf(log.get(), "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.0f\n",
-                     static_cast<long long>(checkpoint), elapsed, gpu, last_metrics.relmse,
-                     last_metrics.relmse_trimmed, last_metrics.mape, last_metrics.mean_bias,
-                     nonfinite_count(accumulation));
-        std::fflush(log.get());  // a long render can be watched, and an interrupted one keeps its rows
+        char row[256];
+        std::snprintf(row, sizeof row, "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.0f",
+                      static_cast<long long>(checkpoint), elapsed, gpu, last_metrics.relmse,
+                      last_metrics.relmse_trimmed, last_metrics.mape, last_metrics.mean_bias,
+                      nonfinite_count(accumulation));
+        log->write_line(row);
         checkpoint = next_checkpoint(checkpoint, target);
         clock.resume();
       }
@@ -335,13 +436,15 @@ int run_render_command(int argc, char** argv) {
                  o.output.c_str(), width, height, static_cast<long long>(renderer.sample_count()), total,
                  renderer.sample_count() / total, pixel_samples / total * 1e-6);
     if (log) {
-      if (std::fclose(log.release()) != 0)
-        throw std::runtime_error(o.log + ": cannot write the log: " + std::strerror(errno));
+      log->close();
       std::fprintf(stderr, "glint: wrote %s (last row: relMSE %.4g, trimmed %.4g, bias %+.4g)\n",
                    o.log.c_str(), last_metrics.relmse, last_metrics.relmse_trimmed,
                    last_metrics.mean_bias);
     }
     return 0;
+  } catch (const UsageError& e) {  // arguments that conflict with each other or the project
+    std::fprintf(stderr, "glint render: %s\n", e.message.c_str());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint render: %s\n", e.what());
     return 1;

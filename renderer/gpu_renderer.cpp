@@ -13,6 +13,7 @@
 #include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/program_worker.h"
+#include "renderer/project_file.h"
 
 namespace glint {
 namespace {
@@ -98,6 +99,12 @@ void GpuRenderer::resize(int width, int height) {
 }
 
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
+  // The film limits of a project hold for every caller (and before anything changes): a
+  // larger image would fail to allocate, or crash the driver, only after gigabytes.
+  if (width > 0 && height > 0)
+    if (const auto problem = check_film_size(width, height))
+      throw std::runtime_error("cannot render a " + std::to_string(width) + "x" +
+                               std::to_string(height) + " image: " + problem->what());
   SceneDigests d = digest_scene(scene);
   SyncResult result;
   const glm::dvec3 origin = render_origin(scene.camera.position);

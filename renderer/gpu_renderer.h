@@ -58,7 +58,8 @@ class GpuRenderer {
   GpuRenderer& operator=(const GpuRenderer&) = delete;
 
   // Brings the GPU state up to date with a validated scene rendered at width x height.
-  // Throws ImageError if a texture cannot be loaded; the previous state is then kept.
+  // Throws ImageError if a texture cannot be loaded, and std::runtime_error for a size beyond
+  // a project's film limits (check_film_size); the previous state is then kept.
   SyncResult sync(const Scene& scene, int width, int height);
 
   // Takes effect at the next sync, which then restarts the accumulation if they changed.

@@ -49,7 +49,9 @@ Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesy
                       ColorEncoding encoding);
 
 // Writes by extension: .png (values clamped to [0,1], written as 8-bit without further encoding),
-// .hdr (RGB), .exr (RGBA float32). Throws ImageError on failure or an unknown extension.
+// .hdr (RGB), .exr (RGBA float32), atomically (write_file_atomically, atomic_file.h). Throws
+// ImageError naming the file and the OS reason on failure (the old file is then unchanged)
+// or for an unknown extension.
 void save_image(const std::filesystem::path& path, const Image& image);
 
 float srgb_to_linear(float c);

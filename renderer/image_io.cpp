@@ -3,14 +3,16 @@
 // contain their implementations, so no *_IMPLEMENTATION macro is defined here.
 #include "renderer/image.h"
 
+#include "renderer/atomic_file.h"
+
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -19,7 +21,6 @@
 #include <string_view>
 #include <system_error>
 
-#include <unistd.h>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -53,7 +54,9 @@ std::string lower_extension(const std::filesystem::path& path) {
 
 std::vector<unsigned char> read_file(const std::filesystem::path& path, size_t max_bytes) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "file not found");
+  // exists() is false also when the path cannot be resolved (a symbolic link loop): give that
+  // reason rather than "not found".
+  if (!std::filesystem::exists(path, ec)) fail(path, ec ? ec.message() : "file not found");
   if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image");
   // A FIFO or device (a texture path of /dev/stdin) would block or never end.
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
@@ -405,13 +408,86 @@ ImageInfo probe_bytes(const std::filesystem::path& path, const std::vector<unsig
 
 // --- writing -----------------------------------------------------------------------------------
 
-// A unique sibling of `path` that the writers fill before it is renamed over `path`, so that a
-// failed or interrupted save never leaves a half-written image behind.
-std::filesystem::path temporary_sibling(const std::filesystem::path& path) {
-  static std::atomic<unsigned> counter{0};
-  std::filesystem::path tmp = path;
-  tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  return tmp;
+// The encoders write into memory; write_file_atomically then checks every write to the disk.
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+}
+
+std::vector<unsigned char> encode_png(const std::filesystem::path& path, const Image& image) {
+  const size_t count = static_cast<size_t>(image.width) * image.height;
+  // RGB when the image is opaque (smaller files), RGBA otherwise.
+  bool has_alpha = false;
+  for (size_t i = 0; i < count && !has_alpha; ++i) has_alpha = image.pixels[i * 4 + 3] < 1.0f;
+  const int comp = has_alpha ? 4 : 3;
+  std::vector<unsigned char> bytes(count * comp);
+  for (size_t i = 0; i < count; ++i)
+    for (int c = 0; c < comp; ++c) {
+      const float v = image.pixels[i * 4 + c];
+      // NaN fails the comparison and becomes 0.
+      const float clamped = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
+      bytes[i * comp + c] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
+    }
+  std::vector<unsigned char> file;
+  if (!stbi_write_png_to_func(&append_bytes, &file, image.width, image.height, comp, bytes.data(),
+                              image.width * comp))
+    fail(path, "cannot encode the PNG image");
+  return file;
+}
+
+std::vector<unsigned char> encode_hdr(const std::filesystem::path& path, const Image& image) {
+  const size_t count = static_cast<size_t>(image.width) * image.height;
+  // RGBE stores neither negative nor non-finite values, and its exponent tops out near 1e38.
+  std::vector<float> rgb(count * 3);
+  for (size_t i = 0; i < count; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const float v = image.pixels[i * 4 + c];
+      rgb[i * 3 + c] = v > 0.0f ? std::min(v, 1e38f) : 0.0f;
+    }
+  std::vector<unsigned char> file;
+  if (!stbi_write_hdr_to_func(&append_bytes, &file, image.width, image.height, 3, rgb.data()))
+    fail(path, "cannot encode the Radiance HDR image");
+  return file;
+}
+
+// RGBA float32 as tinyexr's SaveEXR writes it (the same bytes): channels in A, B, G, R order
+// as most viewers expect, ZIP compressed unless the image is smaller than 16x16.
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
+  const size_t count = static_cast<size_t>(image.width) * image.height;
+  std::vector<float> planes[4];  // A, B, G, R
+  for (int c = 0; c < 4; ++c) {
+    planes[c].resize(count);
+    for (size_t i = 0; i < count; ++i) planes[c][i] = image.pixels[i * 4 + (3 - c)];
+  }
+  unsigned char* pointers[4];
+  EXRChannelInfo channels[4] = {};
+  int pixel_types[4], requested_types[4];
+  for (int c = 0; c < 4; ++c) {
+    pointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+    channels[c].name[0] = "ABGR"[c];
+    pixel_types[c] = requested_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  EXRImage exr_image;
+  InitEXRImage(&exr_image);
+  exr_image.num_channels = 4;
+  exr_image.images = pointers;
+  exr_image.width = image.width;
+  exr_image.height = image.height;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
+                                                                   : TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_channels = 4;
+  header.channels = channels;
+  header.pixel_types = pixel_types;
+  header.requested_pixel_types = requested_types;
+  unsigned char* memory = nullptr;
+  const char* err = nullptr;
+  const size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &err);
+  if (size == 0 || !memory) fail(path, "cannot encode the OpenEXR image (" + take_exr_error(err, 0) + ")");
+  std::vector<unsigned char> file(memory, memory + size);
+  std::free(memory);
+  return file;
 }
 
 }  // namespace
@@ -481,53 +557,13 @@ void save_image(const std::filesystem::path& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
     fail(path, "cannot save an empty or inconsistent image");
-  const int w = image.width, h = image.height;
-  const size_t count = static_cast<size_t>(w) * h;
-  const std::filesystem::path tmp = temporary_sibling(path);
-  const std::string tmp_name = tmp.string();
-  bool ok = false;
-  std::string problem = "cannot write file";
-
-  if (ext == ".png") {
-    // RGB when the image is opaque (smaller files), RGBA otherwise.
-    bool has_alpha = false;
-    for (size_t i = 0; i < count && !has_alpha; ++i) has_alpha = image.pixels[i * 4 + 3] < 1.0f;
-    const int comp = has_alpha ? 4 : 3;
-    std::vector<unsigned char> bytes(count * comp);
-    for (size_t i = 0; i < count; ++i)
-      for (int c = 0; c < comp; ++c) {
-        const float v = image.pixels[i * 4 + c];
-        // NaN fails the comparison and becomes 0.
-        const float clamped = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
-        bytes[i * comp + c] = static_cast<unsigned char>(std::lround(clamped * 255.0f));
-      }
-    ok = stbi_write_png(tmp_name.c_str(), w, h, comp, bytes.data(), w * comp) != 0;
-  } else if (ext == ".hdr") {
-    // RGBE stores neither negative nor non-finite values, and its exponent tops out near 1e38.
-    std::vector<float> rgb(count * 3);
-    for (size_t i = 0; i < count; ++i)
-      for (int c = 0; c < 3; ++c) {
-        const float v = image.pixels[i * 4 + c];
-        rgb[i * 3 + c] = v > 0.0f ? std::min(v, 1e38f) : 0.0f;
-      }
-    ok = stbi_write_hdr(tmp_name.c_str(), w, h, 3, rgb.data()) != 0;
-  } else {
-    const char* err = nullptr;
-    const int ret = SaveEXR(image.pixels.data(), w, h, 4, /*save_as_fp16=*/0, tmp_name.c_str(), &err);
-    ok = ret == TINYEXR_SUCCESS;
-    if (!ok) problem = "cannot write OpenEXR file (" + take_exr_error(err, ret) + ")";
-  }
-
-  std::error_code ec;
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    fail(path, problem);
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    fail(path, "cannot replace file: " + ec.message());
+  const std::vector<unsigned char> file = ext == ".png"   ? encode_png(path, image)
+                                          : ext == ".hdr" ? encode_hdr(path, image)
+                                                          : encode_exr(path, image);
+  try {
+    write_file_atomically(path, file.data(), file.size());
+  } catch (const FileWriteError& e) {
+    fail(path, e.problem);
   }
 }
 

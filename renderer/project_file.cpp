@@ -12,6 +12,7 @@
 #include <iterator>
 #include <map>
 
+#include "renderer/atomic_file.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
 
@@ -280,21 +281,6 @@ fs::path folder_identity(const fs::path& folder) {
   fs::path canonical = fs::weakly_canonical(absolute, ec);
   if (ec) canonical = absolute.lexically_normal();
   return canonical.has_filename() ? canonical : canonical.parent_path();
-}
-
-// Writes and fsyncs a whole file; returns "" or the system's error message.
-std::string write_file_synced(const fs::path& path, const std::string& text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) return std::strerror(errno);
-  std::string error;
-  for (size_t done = 0; done < text.size() && error.empty();) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n >= 0) done += static_cast<size_t>(n);
-    else if (errno != EINTR) error = std::strerror(errno);
-  }
-  if (error.empty() && ::fsync(fd) != 0) error = std::strerror(errno);
-  if (::close(fd) != 0 && error.empty()) error = std::strerror(errno);
-  return error;
 }
 
 }  // namespace
@@ -612,27 +598,11 @@ std::string save_project_text(const Scene& scene, const fs::path& file) {
 }
 
 void save_project(const Scene& scene, const fs::path& file) {
-  const std::string label = file.string();
-  fs::path tmp = file;
-  tmp += ".tmp";
   const std::string text = save_project_text(scene, file);
-  std::string error = write_file_synced(tmp, text);
-  std::error_code ec;
-  if (error.empty()) {
-    fs::rename(tmp, file, ec);
-    if (ec) error = "cannot replace the file: " + ec.message();
-  } else {
-    error = "cannot write " + tmp.string() + ": " + error;
-  }
-  if (!error.empty()) {
-    fs::remove(tmp, ec);
-    throw ProjectError(label, "", error);
-  }
-  // Make the rename itself durable (best effort).
-  const fs::path dir = fs::absolute(file).parent_path();
-  if (const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
+  try {
+    write_file_atomically(file, text.data(), text.size());
+  } catch (const FileWriteError& e) {
+    throw ProjectError(file.string(), "", e.problem);
   }
 }
 

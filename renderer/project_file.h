@@ -98,9 +98,10 @@ std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
 // another encoding: JSON text cannot hold it).
 std::string save_project_text(const Scene& scene, const std::filesystem::path& file);
 
-// Writes save_project_text(scene, file) atomically: FILE.tmp beside the target, fsync, then
-// rename over the target. Throws ProjectError (with the file name) on IO failure and for the
-// problems of save_project_text; no FILE.tmp is left behind.
+// Writes save_project_text(scene, file) atomically (write_file_atomically, atomic_file.h: a
+// temporary file beside the target, fsync, rename; through symbolic links, keeping the mode).
+// Throws ProjectError (with the file name and the OS reason) on IO failure and for the
+// problems of save_project_text; the old file is then unchanged and no temporary file is left.
 void save_project(const Scene& scene, const std::filesystem::path& file);
 
 }  // namespace glint

@@ -1,10 +1,12 @@
 // `glint render --reference REF --log OUT.csv` (issue 4): the convergence log of a noisy scene
-// against an independent reference, a white furnace against its exact image, and the errors.
+// against an independent reference, a white furnace against its exact image, and the errors:
+// a log path that names an input or the output, a log that cannot be written.
 // Runs the command in-process; it makes its own headless EGL context.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -179,6 +181,68 @@ TEST(RenderLog, BadReferenceFailsBeforeRenderingAndNamesTheFile) {
     EXPECT_NE(err.find(c.message), std::string::npos) << err;
   }
   EXPECT_FALSE(fs::exists(out));
+}
+
+std::string read_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// --log (and -o) must not name a file the command reads, nor each other: refused before
+// anything is written or rendered (exit 2), the files untouched. The same file is found through
+// a symbolic link, a hard link and a path spelled differently.
+TEST(RenderLog, RefusesToOverwriteTheProjectTheReferenceOrTheOutput) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  save_image(dir / "exact.exr", constant_image(32, 32, 0.25f, 0.5f, 1.0f));
+  fs::create_symlink("furnace.glint", dir / "link.csv");
+  fs::create_hard_link(dir / "exact.exr", dir / "hard.csv");
+  const std::string project_bytes = read_bytes(dir / "furnace.glint");
+  const std::string reference_bytes = read_bytes(dir / "exact.exr");
+  const std::string project = (dir / "furnace.glint").string(), reference = (dir / "exact.exr").string();
+  const std::string out = (dir / "out.exr").string();
+  struct Case {
+    std::string output, log, message;
+  } cases[] = {
+      {out, project, "--log " + project + " is the project"},
+      {out, (dir / "sub/../furnace.glint").string(), "is the project"},
+      {out, (dir / "link.csv").string(), "is the project"},
+      {out, reference, "--log " + reference + " is the reference"},
+      {out, (dir / "hard.csv").string(), "is the reference"},
+      {out, out, "--log " + out + " is the output image"},
+      {reference, (dir / "log.csv").string(), "-o " + reference + " is the reference"},
+  };
+  fs::create_directories(dir / "sub");
+  for (const Case& c : cases) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(render({project, "-o", c.output, "--spp", "1", "--reference", reference, "--log", c.log}), 2)
+        << c.log;
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_NE(err.find(c.message), std::string::npos) << err;
+    EXPECT_EQ(err.find("glint: OpenGL"), std::string::npos) << err;
+  }
+  EXPECT_TRUE(read_bytes(dir / "furnace.glint") == project_bytes);
+  EXPECT_TRUE(read_bytes(dir / "exact.exr") == reference_bytes);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "log.csv"));
+}
+
+// A log that cannot be written fails the command with the OS reason (exit 1), before the
+// render when the header already fails (/dev/full), never "wrote".
+TEST(RenderLog, FailedLogWritesFailTheCommand) {
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  save_image(dir / "exact.exr", constant_image(32, 32, 0.25f, 0.5f, 1.0f));
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({(dir / "furnace.glint").string(), "-o", (dir / "out.exr").string(), "--spp", "2",
+                    "--reference", (dir / "exact.exr").string(), "--log", "/dev/full"}), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("glint render: /dev/full: cannot write the log: No space left on device"),
+            std::string::npos) << err;
+  EXPECT_EQ(err.find("wrote"), std::string::npos) << err;
+  EXPECT_EQ(err.find("glint: OpenGL"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir / "out.exr"));
 }
 
 }  // namespace
