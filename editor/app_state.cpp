@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/atomic_file.h"
 #include "renderer/project_file.h"
 
 namespace glint {
@@ -33,25 +34,17 @@ std::optional<std::string> read_text(const fs::path& file) {
   return text;
 }
 
-// Temporary file renamed over the target, so a crash mid-write never leaves half a file.
-bool write_text_atomic(const fs::path& file, const std::string& text) {
+// The shared atomic writer (renderer/atomic_file.h): a crash or a full disk mid-write never
+// leaves half a file. Returns the problem, or an empty string once written.
+std::string write_text_atomic(const fs::path& file, const std::string& text) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
-  fs::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out) {
-      out.close();
-      fs::remove(tmp, ec);
-      return false;
-    }
+  try {
+    write_file_atomically(file, text.data(), text.size());
+  } catch (const FileWriteError& e) {
+    return e.problem;
   }
-  fs::rename(tmp, file, ec);
-  if (ec) fs::remove(tmp, ec);
-  return !ec;
+  return {};
 }
 
 fs::path absolute_normal(const fs::path& p) {
@@ -129,8 +122,9 @@ void write_recovery(const Document& doc, const fs::path& dir) {
   side["base_dir"] = absolute_normal(doc.scene.base_dir.empty() ? fs::current_path(ec)
                                                                 : doc.scene.base_dir)
                          .string();
-  if (!write_text_atomic(sidecar_path(dir), side.dump(2) + "\n"))
-    throw ProjectError(sidecar_path(dir).string(), "", "cannot write the recovery sidecar");
+  if (const std::string problem = write_text_atomic(sidecar_path(dir), side.dump(2) + "\n");
+      !problem.empty())
+    throw ProjectError(sidecar_path(dir).string(), "", "cannot write the recovery sidecar: " + problem);
 }
 
 std::optional<Recovery> find_recovery(const fs::path& dir) {
