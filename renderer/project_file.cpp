@@ -12,6 +12,7 @@
 #include <iterator>
 #include <map>
 
+#include "renderer/float_limits.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
 
@@ -468,6 +469,7 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
     if (corners_finite) check_quad_area(c, corners, q.corners);
     for (size_t k = 0; k < 4; ++k) c.finite(index_path(child_path(path, "uvs"), k), q.uvs[k]);
   }
+  for (ProjectError& problem : check_float_limits(scene)) c.problems.push_back(std::move(problem));
   return c.problems;
 }
 

@@ -179,6 +179,30 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"2^20 + 1 spheres", [&] { return edit("\"spheres\": [{", "\"spheres\": " + huge_list + ", \"quads\": [{"); },
        "spheres: too many spheres: 1048577 (the limit is 1048576, so that their GPU array fits "
        "the 128 MiB that OpenGL 4.5 guarantees for a shader storage block)"},
+      // Limits of the renderer's 32-bit floats, on the values the GPU sees.
+      {"environment colour 3e38 times intensity 3e38",
+       [] { return edit("\"environment\": {\"texture\": \"sky.hdr\"}", "\"environment\": {\"color\": [3e38, 0, 0], \"intensity\": 3e38}"); },
+       "environment.intensity: times environment.color[0] (3e+38) gives a radiance of inf, above "
+       "the limit of 1e+20 (the renderer sums radiance in 32-bit floats)"},
+      {"textured environment of intensity 3e38", [] { return edit("\"texture\": \"sky.hdr\"", "\"texture\": \"sky.hdr\", \"intensity\": 3e38"); },
+       "environment.intensity: must be at most 1e+20 (got 3e+38) (the renderer sums radiance in "
+       "32-bit floats)"},
+      {"emission 3e38", [] { return edit("\"color_texture\": \"wood\"", "\"color_texture\": \"wood\", \"emission\": [0, 3e38, 0]"); },
+       "materials[0].emission[1]: must be at most 1e+20 (got 3e+38) (the renderer sums radiance "
+       "in 32-bit floats)"},
+      {"sphere floor of radius 1e8 seen from 1 above",
+       [] { return edit("\"center\": [0, 0.5, 0], \"radius\": 0.5", "\"center\": [0, -1e8, 0], \"radius\": 1e8"); },
+       "spheres[0]: the camera is 1 from the surface (radius 1e+08), not farther than the 32-bit "
+       "float rounding of the sphere's position (4): move the camera away or make the sphere "
+       "smaller"},
+      {"sphere of radius 2e12", [] { return edit("\"radius\": 0.5", "\"radius\": 2e12"); },
+       "spheres[0].radius: must be at most 1e+12 in magnitude (got 2e+12) (beyond it the "
+       "renderer's 32-bit float intersection overflows)"},
+      {"quad floor of half-size 1e19",
+       [] { return edit("\"material\": \"m\"}]", "\"material\": \"m\"}], \"quads\": [{\"material\": \"m\", \"corners\": "
+                        "[[-1e19, 0, -1e19], [-1e19, 0, 1e19], [1e19, 0, -1e19], [1e19, 0, 1e19]]}]"); },
+       "quads[0].corners[0][0]: must be at most 1e+12 in magnitude (got -1e+19) (beyond it the "
+       "renderer's 32-bit float intersection overflows)"},
       // Images: missing, cut, corrupted, not an image.
       {"missing texture", [] { return edit("wood.png", "missing.png"); },
        "textures[0].path: cannot read image: {dir}/missing.png: file not found"},
