@@ -599,8 +599,9 @@ Scene load_project(const fs::path& file) {
   if (!fs::exists(file, ec) && !ec) throw ProjectError(label, "", "no such file");
   if (fs::is_directory(file, ec)) throw ProjectError(label, "", "is a folder, not a project file");
   // A FIFO or device (a project named /dev/zero, or a link to it) would block or never end.
-  if (!fs::is_regular_file(file, ec))
-    throw ProjectError(label, "", "not a regular file (a device, FIFO or socket)");
+  const bool regular = fs::is_regular_file(file, ec);
+  if (ec) throw ProjectError(label, "", "cannot open: " + ec.message());  // a symlink loop, say
+  if (!regular) throw ProjectError(label, "", "not a regular file (a device, FIFO or socket)");
   const auto size = fs::file_size(file, ec);
   if (!ec && size > kMaxProjectBytes) throw ProjectError(label, "", project_size_problem(size));
   std::ifstream in(file, std::ios::binary);

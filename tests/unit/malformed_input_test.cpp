@@ -463,11 +463,14 @@ TEST(MalformedInput, ProjectsThatAreNotRegularFilesOrTooLarge) {
     std::ofstream(large) << kValid;
   }
   fs::resize_file(large, kMaxProjectBytes + 1);
+  const fs::path loop = tmp.path() / "loop.glint";
+  fs::create_symlink(loop, loop);
   const std::pair<fs::path, std::string> cases[] = {
       {zero, "not a regular file (a device, FIFO or socket)"},
       {"/dev/zero", "not a regular file (a device, FIFO or socket)"},
       {fifo, "not a regular file (a device, FIFO or socket)"},
       {large, "file is too large (1073741825 bytes, the limit is 1073741824 = 1.0 GiB)"},
+      {loop, "cannot open: Too many levels of symbolic links"},
   };
   for (const auto& [file, message] : cases) {
     try {
