@@ -1,5 +1,5 @@
 // Writes the procedural assets that the example projects use, and the generated large scene:
-//   glint-make-assets OUTPUT_FOLDER [SPHERE_FIELD.glint]
+//   glint-make-assets [--help] [--] OUTPUT_FOLDER [SPHERE_FIELD.glint]
 // Colour textures are stored sRGB-encoded (8-bit PNG), roughness maps as linear grey, the sky as
 // a linear Radiance .hdr. The output is deterministic, so re-running it changes no file.
 #include <cstdint>
@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "renderer/image.h"
 #include "renderer/procedural_assets.h"
@@ -104,15 +105,54 @@ std::string compact_project_text(const glint::Scene& scene) {
   return text.replace(at, empty.size(), lines);
 }
 
+constexpr const char* kUsage =
+    "usage: glint-make-assets [--help] [--] OUTPUT_FOLDER [SPHERE_FIELD.glint]\n"
+    "Writes the procedural textures and sky of the example projects into OUTPUT_FOLDER\n"
+    "(created if missing) and, when SPHERE_FIELD.glint is given, the generated large scene.\n"
+    "  -h, --help  print this help and exit\n"
+    "  --          end of options (for a folder whose name starts with '-')\n";
+
+// The positional arguments, or the exit status when there is nothing to generate: 0 after
+// --help, 2 for an unknown option or a wrong number of arguments (a message on stderr).
+struct Arguments {
+  std::vector<std::string> positional;
+  int exit_status = -1;
+};
+
+Arguments parse_arguments(int argc, char** argv) {
+  Arguments args;
+  bool options = true;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (options && arg == "--") {
+      options = false;
+    } else if (options && (arg == "--help" || arg == "-h")) {
+      std::fputs(kUsage, stdout);
+      args.exit_status = 0;
+      return args;
+    } else if (options && arg.size() > 1 && arg[0] == '-') {
+      std::fprintf(stderr, "glint-make-assets: unknown option %s (see --help)\n", arg.c_str());
+      args.exit_status = 2;
+      return args;
+    } else {
+      args.positional.push_back(arg);
+    }
+  }
+  if (args.positional.empty() || args.positional.size() > 2) {
+    std::fprintf(stderr, "glint-make-assets: expected OUTPUT_FOLDER [SPHERE_FIELD.glint], got %zu "
+                         "arguments\n%s", args.positional.size(), kUsage);
+    args.exit_status = 2;
+  }
+  return args;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2 && argc != 3) {
-    std::fprintf(stderr, "usage: %s OUTPUT_FOLDER [SPHERE_FIELD.glint]\n", argc > 0 ? argv[0] : "glint-make-assets");
-    return 2;
-  }
+  const Arguments args = parse_arguments(argc, argv);
+  if (args.exit_status >= 0) return args.exit_status;
   namespace gp = glint::procedural;
-  const std::filesystem::path out = argv[1];
+  const std::filesystem::path out = args.positional[0];
   try {
     std::filesystem::create_directories(out);
     auto write = [&](const char* name, const glint::Image& image) {
@@ -127,11 +167,12 @@ int main(int argc, char** argv) {
     write("metal_roughness.png", gp::metal_roughness());
     write("checker.png", encode_srgb(gp::checker_with_holes()));
     write("sky.hdr", gp::sky());
-    if (argc == 3) {
-      std::ofstream file(argv[2], std::ios::binary);
+    if (args.positional.size() == 2) {
+      const std::string& scene_file = args.positional[1];
+      std::ofstream file(scene_file, std::ios::binary);
       file << compact_project_text(sphere_field());
-      if (!file.flush()) throw std::runtime_error(std::string("cannot write ") + argv[2]);
-      std::printf("wrote %s\n", argv[2]);
+      if (!file.flush()) throw std::runtime_error("cannot write " + scene_file);
+      std::printf("wrote %s\n", scene_file.c_str());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -11,13 +11,18 @@
 namespace glint {
 namespace {
 
-// aspect = width / height of the image being rendered.
+// aspect = width / height of the image being rendered. The frame is built in double and
+// rounded once: in float, target - position overflows for points far apart, and a short up
+// vector (length 1e-30, valid) squares to zero in normalize(cross(forward, up)), which gave a
+// NaN frame. In double neither happens for any finite float input (validate_scene checks the
+// same frame).
 gpu::CameraFrame make_camera_frame(const Camera& camera, float aspect) {
-  glm::vec3 forward = glm::normalize(camera.target - camera.position);
-  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-  glm::vec3 up = glm::cross(right, forward);
+  const glm::dvec3 forward = glm::normalize(glm::dvec3(camera.target) - glm::dvec3(camera.position));
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(camera.up)));
+  const glm::dvec3 up = glm::cross(right, forward);
   float tan_half = std::tan(glm::radians(camera.vfov_deg) * 0.5f);
-  return gpu::CameraFrame(camera.position, right, up, forward, tan_half, aspect,
+  return gpu::CameraFrame(camera.position, glm::vec3(right), glm::vec3(up), glm::vec3(forward),
+                          tan_half, aspect,
                           camera.aperture_radius, camera.focus_distance);
 }
 

@@ -96,8 +96,11 @@ PackedScene pack_scene(const Scene& scene, const glm::dvec3& origin) {
     g.p3 = glm::vec4(local(q.corners[3]), 0);
     g.uv01 = glm::vec4(q.uvs[0], q.uvs[1]);
     g.uv23 = glm::vec4(q.uvs[2], q.uvs[3]);
-    g.normal = glm::vec4(
-        glm::normalize(glm::cross(q.corners[1] - q.corners[0], q.corners[2] - q.corners[0])), 0);
+    // In double: in float the cross product's squared length overflows from edges of about
+    // 1e10 (normalize then gave a zero normal and a black quad), the cross product itself
+    // from about 1e19.
+    const glm::dvec3 c0(q.corners[0]), c1(q.corners[1]), c2(q.corners[2]);
+    g.normal = glm::vec4(glm::vec3(glm::normalize(glm::cross(c1 - c0, c2 - c0))), 0);
     g.material = glm::ivec4(material_index(scene, q.material), -1, 0, 0);
     packed.quads.push_back(g);
   }

@@ -8,8 +8,21 @@
 
 namespace glint::json_fields {
 
+std::string clip(std::string_view text, size_t max) {
+  constexpr std::string_view kEllipsis = "...";
+  if (text.size() <= max) return std::string(text);
+  if (max <= kEllipsis.size()) return std::string(kEllipsis.substr(0, max));
+  auto continuation = [&](size_t i) { return (static_cast<unsigned char>(text[i]) & 0xc0) == 0x80; };
+  const size_t keep = max - kEllipsis.size();
+  size_t head = keep - keep / 2, tail = text.size() - keep / 2;
+  while (head > 0 && continuation(head)) --head;          // text[head] starts a sequence
+  while (tail < text.size() && continuation(tail)) ++tail;  // so does text[tail]
+  return std::string(text.substr(0, head)) + std::string(kEllipsis) + std::string(text.substr(tail));
+}
+
 std::string child_path(const std::string& path, std::string_view key) {
-  return path.empty() ? std::string(key) : path + "." + std::string(key);
+  const std::string shown = clip(key, kMaxQuotedKey);
+  return path.empty() ? shown : path + "." + shown;
 }
 
 std::string index_path(const std::string& path, size_t index) {
@@ -20,11 +33,9 @@ std::string describe(const Json& value) {
   switch (value.type()) {
     case Json::value_t::null: return "null";
     case Json::value_t::boolean: return "boolean " + value.dump();
-    case Json::value_t::string: {
-      std::string text = value.dump(-1, ' ', false, Json::error_handler_t::replace);
-      if (text.size() > 42) text = text.substr(0, 40) + "...\"";
-      return "string " + text;
-    }
+    case Json::value_t::string:
+      return "string " + Json(clip(value.get_ref<const std::string&>(), kMaxQuotedString))
+                             .dump(-1, ' ', false, Json::error_handler_t::replace);
     case Json::value_t::array: return "an array of " + std::to_string(value.size());
     case Json::value_t::object: return "an object";
     default: return "number " + value.dump();
@@ -229,7 +240,7 @@ class DuplicateKeySax {
   bool key(Json::string_t& key) {
     Frame& f = frames_.back();
     f.key = key;
-    if (!f.keys.insert(key).second) fail(file_, child_path(f.path, key), "duplicate key");
+    if (!f.keys.insert(key).second) fail(file_, path_of(frames_.size()), "duplicate key");
     return dom_.key(key);
   }
   bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) {
@@ -242,22 +253,31 @@ class DuplicateKeySax {
   }
 
  private:
+  // One open array or object. Its JSON path is built from the frames only when an error is
+  // reported: a path per frame would take memory quadratic in the depth.
   struct Frame {
     bool is_array;
-    size_t index;
-    std::string key;
+    size_t index;     // of the next element, in an array
+    std::string key;  // the last key read, in an object
     std::set<std::string> keys;
-    std::string path;
   };
 
-  std::string element_path() const {
-    if (frames_.empty()) return "";
-    const Frame& parent = frames_.back();
-    return parent.is_array ? index_path(parent.path, parent.index)
-                           : child_path(parent.path, parent.key);
+  // The path of the current element of the first `count` frames ("" for the root).
+  std::string path_of(size_t count) const {
+    std::string path;
+    for (size_t i = 0; i < count; ++i) {
+      const Frame& f = frames_[i];
+      // frames_[i] is open inside frames_[i - 1]'s current element, whose counter has not
+      // advanced yet (value() runs when the element ends).
+      path = f.is_array ? index_path(path, f.index) : child_path(path, f.key);
+    }
+    return path;
   }
   bool start(bool is_array) {
-    frames_.push_back({is_array, 0, {}, {}, element_path()});
+    // parse_text checks the depth before parsing; this bounds it for any other caller.
+    if (frames_.size() >= size_t(kMaxJsonDepth))
+      fail(file_, "", "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    frames_.push_back({is_array, 0, {}, {}});
     return true;
   }
   bool end() {
@@ -312,12 +332,83 @@ void write(const Json& v, int indent, std::string& out) {
   }
 }
 
+// "line 3, column 5" of the byte at `at`, counted as nlohmann counts (columns in bytes).
+std::string position_text(std::string_view text, size_t at) {
+  size_t line = 1, line_start = 0;
+  for (size_t i = 0; i < at; ++i)
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  return "line " + std::to_string(line) + ", column " + std::to_string(at - line_start + 1);
+}
+
+// The encoding that text which is not UTF-8 looks like: a UTF-16 or UTF-32 byte order mark, or
+// the NUL bytes that those encodings give the first (ASCII) character; "" for neither.
+std::string other_encoding(std::string_view t) {
+  using namespace std::string_view_literals;
+  auto starts = [&](std::string_view prefix) { return t.substr(0, prefix.size()) == prefix; };
+  auto zero = [&](size_t i) { return i < t.size() && t[i] == 0; };
+  auto other = [&](size_t i) { return i < t.size() && t[i] != 0; };
+  if (starts("\xff\xfe\0\0"sv)) return "UTF-32 little-endian, with a byte order mark";
+  if (starts("\0\0\xfe\xff"sv)) return "UTF-32 big-endian, with a byte order mark";
+  if (starts("\xff\xfe"sv)) return "UTF-16 little-endian, with a byte order mark";
+  if (starts("\xfe\xff"sv)) return "UTF-16 big-endian, with a byte order mark";
+  if (other(0) && zero(1) && zero(2) && zero(3)) return "UTF-32 little-endian";
+  if (zero(0) && zero(1) && zero(2) && other(3)) return "UTF-32 big-endian";
+  if (other(0) && zero(1)) return "UTF-16 little-endian";
+  if (zero(0) && other(1)) return "UTF-16 big-endian";
+  return "";
+}
+
+// What nlohmann's parser does not check, in one pass over the bytes before it runs: the
+// encoding, the nesting depth (with its position: arrays and objects nested 10^5 deep would
+// otherwise be built before any check), and NUL bytes. Returns the position of a NUL byte
+// outside any string, array or object, after the document's start, or npos: the parser takes
+// it for the end of the input, so the text is refused as trailing content if it parses.
+size_t check_text(const std::string& text, const std::string& file) {
+  if (const std::string encoding = other_encoding(text); !encoding.empty())
+    fail(file, "", "not UTF-8 (looks like " + encoding + "); a project file is JSON text in UTF-8");
+  int depth = 0;
+  bool in_string = false, escaped = false, started = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\0') {
+      if (depth == 0 && !in_string && started) return i;
+      fail(file, "", "invalid JSON: a NUL byte " + std::string(in_string ? "in a string " : "") +
+                         "at " + position_text(text, i) +
+                         (in_string ? " (write it as \\u0000)" : ""));
+    }
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth)
+        fail(file, "", "invalid JSON: arrays and objects nested deeper than " +
+                           std::to_string(kMaxJsonDepth) + " levels at " + position_text(text, i));
+    } else if (c == ']' || c == '}') {
+      depth = std::max(depth - 1, 0);  // an unbalanced one is the parser's syntax error
+    }
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\r') started = true;
+  }
+  return std::string::npos;
+}
+
 }  // namespace
 
 Json parse_text(const std::string& text, const std::string& file) {
+  const size_t nul = check_text(text, file);
   Json doc;
   DuplicateKeySax parser(file, doc);
   Json::sax_parse(text, &parser);  // throws ProjectError on a syntax error or a duplicate key
+  if (nul != std::string::npos)
+    fail(file, "", "trailing content after the JSON document at " + position_text(text, nul) +
+                       " (a NUL byte; only whitespace may follow the document)");
   return doc;
 }
 

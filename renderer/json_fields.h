@@ -18,7 +18,20 @@ namespace glint::json_fields {
 
 using Json = nlohmann::ordered_json;  // keeps keys in document / writing order
 
+// Limits of the text that messages quote from a file: a key in a JSON path, a quoted name or
+// string value, and the parts of a whole message (project_file.cpp error_message).
+constexpr size_t kMaxQuotedKey = 64;
+constexpr size_t kMaxQuotedString = 64;
+// A document nested deeper than this (arrays and objects) is refused before it is parsed;
+// a project needs 4 levels.
+constexpr int kMaxJsonDepth = 256;
+
+// `text` if it has at most `max` bytes, else its first and last bytes around "..." (max bytes
+// in all, cut between UTF-8 sequences): "spheres[0].aaaaa...aaaaa".
+std::string clip(std::string_view text, size_t max);
+
 // "camera" + "up" -> "camera.up"; "" + "camera" -> "camera"; "spheres" + 3 -> "spheres[3]".
+// A key longer than kMaxQuotedKey is clipped (a path names a place in an error message).
 std::string child_path(const std::string& path, std::string_view key);
 std::string index_path(const std::string& path, size_t index);
 
@@ -83,7 +96,10 @@ Json float_to_json(float value);
 Json vec_to_json(glm::vec2 v);
 Json vec_to_json(glm::vec3 v);
 
-// Parses JSON text; a syntax error or a duplicate key in an object throws ProjectError.
+// Parses JSON text; a syntax error or a duplicate key in an object throws ProjectError, and so
+// does text that is not UTF-8 (UTF-16 and UTF-32 are named), nesting deeper than
+// kMaxJsonDepth, and a NUL byte (nlohmann reads one as the end of the input, so a document
+// followed by "\0garbage" would load). A UTF-8 byte order mark is accepted.
 Json parse_text(const std::string& text, const std::string& file);
 
 // 2-space indented JSON with a trailing newline; arrays of numbers (and arrays of those) stay

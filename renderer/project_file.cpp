@@ -13,6 +13,7 @@
 #include <map>
 
 #include "renderer/atomic_file.h"
+#include "renderer/float_limits.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
 
@@ -27,12 +28,19 @@ using json_fields::index_path;
 
 namespace {
 
+// The parts of a message are clipped (their middle replaced by "..."), so that a message stays
+// within about 600 characters whatever the file holds: a file name, path or problem that
+// quotes a 50 MB key or string would otherwise repeat it in full.
+constexpr size_t kMaxMessageFile = 160;
+constexpr size_t kMaxMessagePath = 120;
+constexpr size_t kMaxMessageProblem = 300;
+
 std::string error_message(const std::string& file, const std::string& path,
                           const std::string& problem) {
   std::string message;
-  for (const std::string* part : {&file, &path})
-    if (!part->empty()) message += *part + ": ";
-  return message + problem;
+  if (!file.empty()) message += json_fields::clip(file, kMaxMessageFile) + ": ";
+  if (!path.empty()) message += json_fields::clip(path, kMaxMessagePath) + ": ";
+  return message + json_fields::clip(problem, kMaxMessageProblem);
 }
 
 // ---- Parsing: structure and types. Values are checked afterwards by validate_scene. ----
@@ -41,8 +49,10 @@ constexpr int kMaxBounces = 1024;
 
 // A name in quotes for a message; invalid UTF-8 (possible in scenes built through the API)
 // is shown replaced rather than thrown by nlohmann's dump.
+// Long names are clipped (json_fields::clip).
 std::string quote_name(const std::string& text) {
-  return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
+  return Json(json_fields::clip(text, json_fields::kMaxQuotedString))
+      .dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
 // "335.3 GiB", "512.0 MiB".
@@ -288,8 +298,8 @@ fs::path folder_identity(const fs::path& folder) {
 ProjectError::ProjectError(std::string file_, std::string json_path_, std::string problem_)
     : std::runtime_error(error_message(file_, json_path_, problem_)),
       file(std::move(file_)),
-      json_path(std::move(json_path_)),
-      problem(std::move(problem_)) {}
+      json_path(json_fields::clip(json_path_, kMaxMessagePath)),
+      problem(json_fields::clip(problem_, kMaxMessageProblem)) {}
 
 Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file,
                       const fs::path& base_dir, bool check_files) {
@@ -445,6 +455,7 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
     if (corners_finite) check_quad_area(c, corners, q.corners);
     for (size_t k = 0; k < 4; ++k) c.finite(index_path(child_path(path, "uvs"), k), q.uvs[k]);
   }
+  for (ProjectError& problem : check_float_limits(scene)) c.problems.push_back(std::move(problem));
   return c.problems;
 }
 
@@ -563,15 +574,32 @@ std::string first_non_utf8_string(const Scene& s) {
   return "";
 }
 
+static std::string project_size_problem(uintmax_t size) {
+  return "file is too large (" + std::to_string(size) + " bytes, the limit is " +
+         std::to_string(kMaxProjectBytes) + " = " + bytes_text(double(kMaxProjectBytes)) + ")";
+}
+
 Scene load_project(const fs::path& file) {
   const std::string label = file.string();
   std::error_code ec;
   if (!fs::exists(file, ec) && !ec) throw ProjectError(label, "", "no such file");
   if (fs::is_directory(file, ec)) throw ProjectError(label, "", "is a folder, not a project file");
+  // A FIFO or device (a project named /dev/zero, or a link to it) would block or never end.
+  const bool regular = fs::is_regular_file(file, ec);
+  if (ec) throw ProjectError(label, "", "cannot open: " + ec.message());  // a symlink loop, say
+  if (!regular) throw ProjectError(label, "", "not a regular file (a device, FIFO or socket)");
+  const auto size = fs::file_size(file, ec);
+  if (!ec && size > kMaxProjectBytes) throw ProjectError(label, "", project_size_problem(size));
   std::ifstream in(file, std::ios::binary);
   if (!in) throw ProjectError(label, "", std::string("cannot open: ") + std::strerror(errno));
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Read at most one byte past the limit: the file may grow after file_size.
+  std::string text;
+  text.reserve(ec ? 0 : static_cast<size_t>(size));
+  char buffer[65536];
+  while (text.size() <= kMaxProjectBytes && in.read(buffer, sizeof buffer).gcount() > 0)
+    text.append(buffer, static_cast<size_t>(in.gcount()));
   if (in.bad()) throw ProjectError(label, "", "cannot read the file");
+  if (text.size() > kMaxProjectBytes) throw ProjectError(label, "", project_size_problem(text.size()));
   try {
     return load_project_text(text, label, fs::absolute(file).parent_path(), true);
   } catch (const ProjectError&) {

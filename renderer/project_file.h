@@ -35,11 +35,15 @@ struct ProjectError : std::runtime_error {
 //    std430 arrays (32 and 128 bytes an element) then stay within 128 MiB, the smallest
 //    GL_MAX_SHADER_STORAGE_BLOCK_SIZE that OpenGL 4.5 allows. A longer array is refused before
 //    any of its elements is read.
+//  - The file: at most kMaxProjectBytes, read only from a regular file. The limit admits the
+//    largest scene above as save_project writes it (about 160 MiB for 2^20 spheres, 370 MiB for
+//    2^20 quads, with full-precision coordinates) with room for long names.
 constexpr int kMaxFilmSide = 16384;
 constexpr int64_t kMaxFilmPixels = int64_t(1) << 26;  // e.g. 8192 x 8192
 constexpr int kFilmBytesPerPixel = 4 * 16 + 4;
 constexpr size_t kMaxSpheres = size_t(1) << 20;
 constexpr size_t kMaxQuads = size_t(1) << 20;
+constexpr uintmax_t kMaxProjectBytes = uintmax_t(1) << 30;
 
 // Reads, parses and validates; throws ProjectError on the first problem. Never returns a
 // half-loaded scene. The returned scene's base_dir is the file's folder.

@@ -584,3 +584,92 @@ TEST(hard_LoopLimit, BvhSceneOfTenThousandSpheres) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// A grey floor (albedo 0.5) under a white environment, seen from 1 above it.
+Scene floor_scene() {
+  Scene s = empty_scene();
+  s.camera.position = {0, 1, 4};
+  s.camera.target = {0, 0, 0};
+  s.environment.color = {1, 1, 1};
+  s.render.max_bounces = 2;
+  s.materials.push_back({.name = "floor", .color = {0.5f, 0.5f, 0.5f}});
+  return s;
+}
+
+Quad square_floor(float half_size) {
+  const float h = half_size;
+  return {.name = "floor", .material = "floor",
+          .corners = {glm::vec3{-h, 0, -h}, glm::vec3{-h, 0, h}, glm::vec3{h, 0, -h}, glm::vec3{h, 0, h}}};
+}
+
+// Quad floors of half-size 1e11 and 1e12 (the largest coordinates validate_scene admits)
+// render like one of half-size 1e4. Their normal was normalized in float, where the squared
+// length of the edges' cross product overflows from about 1e10: a zero normal, a black floor.
+TEST(hard_HugeQuad, FloorsOfHalfSize1e11And1e12RenderLikeASmallFloor) {
+  ensure_gl_context();
+  Scene small = floor_scene();
+  small.quads.push_back(square_floor(1e4f));
+  const Image a = render(small, 16, 16, 32);
+  small.render.seed = 12345;
+  const Image a2 = render(small, 16, 16, 32);
+  for (float h : {1e11f, 1e12f}) {
+    Scene huge = floor_scene();
+    huge.quads.push_back(square_floor(h));
+    ASSERT_TRUE(validate_scene(huge, false).empty());
+    expect_agreement(a, render(huge, 16, 16, 32), a2, h < 5e11f ? "half-size 1e11" : "half-size 1e12");
+  }
+}
+
+// A camera up vector of length 1e-30 (valid: not zero, not parallel to the view) gives the
+// same image as a unit one. In float, normalize(cross(forward, up)) squared 1e-30 to zero: a
+// NaN frame, and an image of sky only.
+TEST(hard_CameraUp, UpOfLength1eMinus30RendersLikeAUnitUp) {
+  ensure_gl_context();
+  Scene s = floor_scene();
+  s.quads.push_back(square_floor(10));
+  const Image unit = render(s, 16, 16, 16);
+  s.camera.up = {0, 1e-30f, 0};
+  ASSERT_TRUE(validate_scene(s, false).empty());
+  const Image tiny = render(s, 16, 16, 16);
+  ASSERT_TRUE(all_finite(tiny));
+  EXPECT_LE(test::max_relative_difference(unit, tiny), 1e-5);
+}
+
+// Very bright pixels display white, not black: an emitter of 1e20 (the radiance limit) fills
+// the middle of the image, and a dim scene at +100 stops is white everywhere it is not black.
+// The filmic curve's c^2 overflowed (inf / inf): a black disc, and an all-black image.
+TEST(hard_Tonemap, BrightPixelsDisplayWhite) {
+  ensure_gl_context();
+  Scene s = empty_scene();
+  s.materials.push_back({.name = "sun", .color = {0, 0, 0}, .emission = {1e20f, 1e20f, 1e20f}});
+  s.spheres.push_back({.name = "sun", .center = {0, 0, 0}, .radius = 1, .material = "sun"});
+  ASSERT_TRUE(validate_scene(s, false).empty());
+  for (Tonemap tonemap : {Tonemap::filmic, Tonemap::linear}) {
+    s.display.tonemap = tonemap;
+    GpuRenderer r;
+    r.sync(s, 16, 16);
+    r.trace(4);
+    const Image display = r.read_display();
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(display.at(8, 8)[c], 1.0f) << "emitter, " << to_string(tonemap);
+      EXPECT_EQ(display.at(0, 0)[c], 0.0f) << "black environment, " << to_string(tonemap);
+    }
+  }
+  Scene dim = floor_scene();
+  dim.environment.color = {1e-3f, 1e-3f, 1e-3f};
+  dim.quads.push_back(square_floor(10));
+  dim.display.exposure = 100;
+  GpuRenderer r;
+  r.sync(dim, 16, 16);
+  r.trace(4);
+  const Image display = r.read_display();
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(display.at(x, y)[c], 1.0f) << x << "," << y;
+}
+
+}  // namespace
+}  // namespace glint

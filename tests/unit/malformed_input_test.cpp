@@ -4,6 +4,7 @@
 // writer, then cut or corrupted). Bad input is an error naming the file, the JSON path and the
 // problem: never a crash, never a half-loaded scene (load_project returns whole scenes only).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -61,6 +62,13 @@ std::string edit(const std::string& from, const std::string& to) {
   if (at == std::string::npos || kValid.find(from, at + 1) != std::string::npos)
     throw std::logic_error("edit: not exactly one '" + from + "' in kValid");
   return kValid.substr(0, at) + to + kValid.substr(at + from.size());
+}
+
+// Each byte of `text` widened to two (its UTF-16 code unit, for ASCII text).
+std::string utf16(const std::string& text, bool big_endian) {
+  std::string out;
+  for (char c : text) out += big_endian ? std::string{'\0', c} : std::string{c, '\0'};
+  return out;
 }
 
 struct ProjectRow {
@@ -171,6 +179,30 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"2^20 + 1 spheres", [&] { return edit("\"spheres\": [{", "\"spheres\": " + huge_list + ", \"quads\": [{"); },
        "spheres: too many spheres: 1048577 (the limit is 1048576, so that their GPU array fits "
        "the 128 MiB that OpenGL 4.5 guarantees for a shader storage block)"},
+      // Limits of the renderer's 32-bit floats, on the values the GPU sees.
+      {"environment colour 3e38 times intensity 3e38",
+       [] { return edit("\"environment\": {\"texture\": \"sky.hdr\"}", "\"environment\": {\"color\": [3e38, 0, 0], \"intensity\": 3e38}"); },
+       "environment.intensity: times environment.color[0] (3e+38) gives a radiance of inf, above "
+       "the limit of 1e+20 (the renderer sums radiance in 32-bit floats)"},
+      {"textured environment of intensity 3e38", [] { return edit("\"texture\": \"sky.hdr\"", "\"texture\": \"sky.hdr\", \"intensity\": 3e38"); },
+       "environment.intensity: must be at most 1e+20 (got 3e+38) (the renderer sums radiance in "
+       "32-bit floats)"},
+      {"emission 3e38", [] { return edit("\"color_texture\": \"wood\"", "\"color_texture\": \"wood\", \"emission\": [0, 3e38, 0]"); },
+       "materials[0].emission[1]: must be at most 1e+20 (got 3e+38) (the renderer sums radiance "
+       "in 32-bit floats)"},
+      {"sphere floor of radius 1e8 seen from 1 above",
+       [] { return edit("\"center\": [0, 0.5, 0], \"radius\": 0.5", "\"center\": [0, -1e8, 0], \"radius\": 1e8"); },
+       "spheres[0]: the camera is 1 from the surface (radius 1e+08), not farther than the 32-bit "
+       "float rounding of the sphere's position (4): move the camera away or make the sphere "
+       "smaller"},
+      {"sphere of radius 2e12", [] { return edit("\"radius\": 0.5", "\"radius\": 2e12"); },
+       "spheres[0].radius: must be at most 1e+12 in magnitude (got 2e+12) (beyond it the "
+       "renderer's 32-bit float intersection overflows)"},
+      {"quad floor of half-size 1e19",
+       [] { return edit("\"material\": \"m\"}]", "\"material\": \"m\"}], \"quads\": [{\"material\": \"m\", \"corners\": "
+                        "[[-1e19, 0, -1e19], [-1e19, 0, 1e19], [1e19, 0, -1e19], [1e19, 0, 1e19]]}]"); },
+       "quads[0].corners[0][0]: must be at most 1e+12 in magnitude (got -1e+19) (beyond it the "
+       "renderer's 32-bit float intersection overflows)"},
       // Images: missing, cut, corrupted, not an image.
       {"missing texture", [] { return edit("wood.png", "missing.png"); },
        "textures[0].path: cannot read image: {dir}/missing.png: file not found"},
@@ -189,6 +221,51 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
        "textures[0].path: cannot read image: /dev/zero: not a regular file"},
       {"missing environment", [] { return edit("sky.hdr", "nope.exr"); },
        "environment.texture: cannot read image: {dir}/nope.exr: file not found"},
+      // Not UTF-8, nested too deep, or followed by more than whitespace.
+      {"UTF-16 little-endian with a byte order mark", [] { return "\xff\xfe" + utf16(kValid, false); },
+       "not UTF-8 (looks like UTF-16 little-endian, with a byte order mark); a project file is "
+       "JSON text in UTF-8"},
+      {"UTF-16 big-endian with a byte order mark", [] { return "\xfe\xff" + utf16(kValid, true); },
+       "not UTF-8 (looks like UTF-16 big-endian, with a byte order mark); a project file is JSON "
+       "text in UTF-8"},
+      {"UTF-16 little-endian without a byte order mark", [] { return utf16(kValid, false); },
+       "not UTF-8 (looks like UTF-16 little-endian); a project file is JSON text in UTF-8"},
+      {"UTF-16 big-endian without a byte order mark", [] { return utf16(kValid, true); },
+       "not UTF-8 (looks like UTF-16 big-endian); a project file is JSON text in UTF-8"},
+      {"UTF-32 little-endian", [] { return utf16(utf16(kValid, false), false); },
+       "not UTF-8 (looks like UTF-32 little-endian); a project file is JSON text in UTF-8"},
+      {"NUL and garbage after the document", [] { return kValid + std::string("\0garbage", 8); },
+       "trailing content after the JSON document at line 6, column " + std::to_string(kValid.size() - kValid.rfind('\n')) +
+           " (a NUL byte; only whitespace may follow the document)"},
+      {"NUL in a string", [] { return edit("\"ball\"", std::string("\"b\0\"", 4)); },
+       "invalid JSON: a NUL byte in a string at line 6, column 26 (write it as \\u0000)"},
+      {"NUL inside the document", [] { return edit("\"ball\",", std::string("\"ball\",\0", 8)); },
+       "invalid JSON: a NUL byte at line 6, column 31"},
+      {"text after the document", [] { return kValid + " x"; },
+       "invalid JSON: parse error at line 6, column 89: syntax error while parsing value - "
+       "invalid literal; last read: '\"m\"}]} x'; expected end of input"},
+      {"100 KB of [", [] { return std::string(100000, '['); },
+       "invalid JSON: arrays and objects nested deeper than 256 levels at line 1, column 257"},
+      // The radius is in the third level (the root, spheres, spheres[0]).
+      {"257 levels in a value", [] { return edit("\"radius\": 0.5", "\"radius\": " + std::string(254, '[')); },
+       "invalid JSON: arrays and objects nested deeper than 256 levels at line 6, column 318"},
+      {"256 levels in a value", [] { return edit("\"radius\": 0.5", "\"radius\": " + std::string(253, '[') + std::string(253, ']')); },
+       "spheres[0].radius: expected a number, got an array of 1"},
+      // User strings in messages are clipped (a 1 MB key or name is not repeated in full).
+      {"1 MB unknown key", [] { return edit("\"radius\"", "\"" + std::string(1 << 20, 'k') + "\""); },
+       "spheres[0]." + std::string(31, 'k') + "..." + std::string(30, 'k') +
+           ": unknown key (expected one of: name, center, radius, material)"},
+      {"1 MB duplicate key", [] { const std::string k = "\"" + std::string(1 << 20, 'k') + "\": 1"; return edit("\"radius\": 0.5", k + ", " + k); },
+       "spheres[0]." + std::string(31, 'k') + "..." + std::string(30, 'k') + ": duplicate key"},
+      {"1 MB string for a number", [] { return edit("\"radius\": 0.5", "\"radius\": \"" + std::string(1 << 20, '7') + "\""); },
+       "spheres[0].radius: expected a number, got string \"" + std::string(31, '7') + "..." +
+           std::string(30, '7') + "\""},
+      {"1 MB material name", [] { return edit("\"material\": \"m\"", "\"material\": \"" + std::string(1 << 20, 'm') + "\""); },
+       "spheres[0].material: unknown material \"" + std::string(31, 'm') + "..." +
+           std::string(30, 'm') + "\""},
+      {"1 MB of a bad literal", [] { return edit("\"radius\": 0.5", "\"radius\": t" + std::string(1 << 20, 'x')); },
+       "invalid JSON: parse error at line 6, column 66: syntax error while parsing value - "
+       "invalid literal; last read: '\"radius\": tx'"},
       {"texture path with invalid UTF-8 escape", [] { return edit("wood.png", "w\\ud800.png"); },
        "invalid JSON: parse error at line 4, column 49: syntax error while parsing value - "
        "invalid string: surrogate U+D800..U+DBFF must be followed by U+DC00..U+DFFF; last read: "
@@ -206,8 +283,12 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
     } catch (const ProjectError& e) {
       EXPECT_EQ(e.file, file.string());
       EXPECT_EQ(std::string(e.what()), file.string() + ": " + replace_dir(row.message, dir));
+      EXPECT_LE(std::string(e.what()).size(), 600u);
     }
   }
+  // A UTF-8 byte order mark is accepted (nlohmann skips it).
+  write_bytes(file, "\xef\xbb\xbf" + kValid);
+  EXPECT_EQ(load_project(file).spheres.at(0).name, "ball");
 }
 
 struct ImageRow {
@@ -367,6 +448,59 @@ TEST(MalformedInput, PathsThatAreNotUtf8) {
   const auto problems = validate_scene(named, false);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_STREQ(problems[0].what(), "spheres[0].material: unknown material \"m\xef\xbf\xbd\"");
+}
+
+// A project that is a device, a FIFO or a link to one is refused without reading it (a link to
+// /dev/zero grew until std::bad_alloc, a FIFO blocked), and so is one over kMaxProjectBytes
+// (a sparse file: no disk space used).
+TEST(MalformedInput, ProjectsThatAreNotRegularFilesOrTooLarge) {
+  TempDir tmp;
+  const fs::path zero = tmp.path() / "zero.glint", fifo = tmp.path() / "fifo.glint",
+                 large = tmp.path() / "large.glint";
+  fs::create_symlink("/dev/zero", zero);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  {
+    std::ofstream(large) << kValid;
+  }
+  fs::resize_file(large, kMaxProjectBytes + 1);
+  const fs::path loop = tmp.path() / "loop.glint";
+  fs::create_symlink(loop, loop);
+  const std::pair<fs::path, std::string> cases[] = {
+      {zero, "not a regular file (a device, FIFO or socket)"},
+      {"/dev/zero", "not a regular file (a device, FIFO or socket)"},
+      {fifo, "not a regular file (a device, FIFO or socket)"},
+      {large, "file is too large (1073741825 bytes, the limit is 1073741824 = 1.0 GiB)"},
+      {loop, "cannot open: Too many levels of symbolic links"},
+  };
+  for (const auto& [file, message] : cases) {
+    try {
+      load_project(file);
+      ADD_FAILURE() << file << " loaded";
+    } catch (const ProjectError& e) {
+      EXPECT_EQ(std::string(e.what()), file.string() + ": " + message);
+    }
+  }
+}
+
+// Every part of a message is clipped in its middle: a long file name keeps its start and its
+// end, and no message exceeds a few hundred characters, whatever the strings it quotes.
+TEST(MalformedInput, MessagesStayShort) {
+  const std::string file = "/" + std::string(4000, 'd') + "/p.glint";
+  const ProjectError e(file, "spheres[0]." + std::string(1 << 20, 'k'), std::string(1 << 20, 'p') + " (why)");
+  const std::string what = e.what();
+  EXPECT_LE(what.size(), 600u);
+  EXPECT_EQ(what.substr(0, 10), "/ddddddddd");
+  EXPECT_NE(what.find("d/p.glint: spheres[0].kkk"), std::string::npos) << what;
+  EXPECT_EQ(what.substr(what.size() - 8), "pp (why)") << what;
+  EXPECT_EQ(e.file, file);
+  EXPECT_LE(e.json_path.size(), 120u);
+  EXPECT_LE(e.problem.size(), 300u);
+  // Clipping never splits a UTF-8 sequence: 2-byte characters stay whole on both sides.
+  std::string twobyte;
+  for (int i = 0; i < 400; ++i) twobyte += "\xc3\xa9";
+  const std::string clipped = ProjectError("", "", twobyte).what();
+  EXPECT_EQ(clipped.size() % 2, 1u);  // whole 2-byte characters and the 3 dots
+  EXPECT_NE(clipped.find("\xc3\xa9...\xc3\xa9"), std::string::npos);
 }
 
 // 10^6 spheres are within the stated limit (kMaxSpheres = 2^20): they load, whole.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "shader_test_util.h"
@@ -75,6 +76,31 @@ TYPED_TEST(ShaderTonemap, IsPerChannelAndMonotonic) {
       ASSERT_GE(v, previous - 4 * L::kEps) << "c = " << c;
       previous = v;
     }
+  }
+}
+
+// Very bright values saturate to white, never to black: every value from 12 (where the filmic
+// curve passes 1) up to the largest finite one and +inf, at exposures up to 127 stops (where
+// c * exp2(exposure) overflows to +inf), and black stays black at any exposure. (c^2 in the
+// curve overflowed from c = 2^64 in float: inf / inf is NaN, shown black.)
+TYPED_TEST(ShaderTonemap, BrightValuesSaturateToWhite) {
+  using L = TypeParam;
+  using R = typename L::Real;
+  const R max = std::numeric_limits<R>::max(), inf = std::numeric_limits<R>::infinity();
+  std::vector<R> bright;
+  for (R c = R(12); c < max / R(1.25); c *= R(1.25)) bright.push_back(c);
+  for (R c : {max / R(2), std::nextafter(max, R(0)), max, inf}) bright.push_back(c);
+  for (int mode : {L::kFilmic, L::kLinear}) {
+    for (R exposure : {R(0), R(1), R(66), R(100), R(127), R(200)}) {
+      for (R c : bright)
+        ASSERT_EQ(L::tonemap_channel(c, exposure, mode), R(1))
+            << (mode == L::kFilmic ? "filmic" : "linear") << " exposure " << double(exposure)
+            << " c " << double(c);
+      EXPECT_EQ(L::tonemap_channel(R(0), exposure, mode), R(0)) << double(exposure);
+      EXPECT_EQ(L::tonemap_channel(R(-1), exposure, mode), R(0)) << double(exposure);
+    }
+    // A dim value at 100 stops is far above white.
+    EXPECT_EQ(L::tonemap_channel(R(1e-3), R(100), mode), R(1));
   }
 }
 
