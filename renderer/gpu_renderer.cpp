@@ -270,9 +270,10 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
       run = runs[kind].end() - 1;
       texels[kind] += int64_t(image.width()) * image.height();
       if (texels[kind] > limit)
-        throw ImageError(json_path(layers[i]) + ": " + files[i].string() + ": the textures need " + std::to_string(texels[kind]) +
-                         (kind ? " float" : " 8-bit") + " texels, more than this OpenGL driver holds (" +
-                         std::to_string(limit) + " texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
+        throw ImageError(json_path(layers[i]) + ": " + files[i].string() + ": the textures need " +
+                         std::to_string(texels[kind]) + (kind ? " float" : " 8-bit") +
+                         " texels, more than this OpenGL driver holds (" + std::to_string(limit) +
+                         " texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
     }
     const int format = kind ? gpu::TEXELS_FLOAT
                             : layers[i].encoding == ColorEncoding::srgb ? gpu::TEXELS_8BIT_SRGB
@@ -310,7 +311,7 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
   if (!failure.empty()) {
     glDeleteTextures(2, textures);
     glDeleteBuffers(2, buffers);
-    throw ImageError((layers.empty() ? std::string("textures") : json_path(layers.front())) + ": " + failure);
+    throw ImageError("textures: " + failure);  // all of them together
   }
   glDeleteTextures(2, texel_textures_);
   glDeleteBuffers(2, texel_buffers_);
@@ -325,6 +326,9 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   std::shared_ptr<const TextureImage> texture;
   Image converted;
   const Image* image = &converted;
+  // Problems read "environment.texture: FILE: ...", as the loader's do.
+  std::string where = "environment.texture: ";
+  if (!env.texture.empty()) where += resolve_asset_path(scene, env.texture).string() + ": ";
   if (!env.texture.empty()) {
     try {
       texture = load_texture_cached(resolve_asset_path(scene, env.texture));
@@ -342,7 +346,7 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   GLint max_side = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
   if (image->width > max_side || image->height > max_side)
-    throw ImageError("environment.texture: " + env.texture + ": " + std::to_string(image->width) +
+    throw ImageError(where + std::to_string(image->width) +
                      "x" + std::to_string(image->height) + " is more than this OpenGL driver holds (" +
                      std::to_string(max_side) + " texels per side, GL_MAX_TEXTURE_SIZE)");
   clear_gl_errors();
@@ -357,7 +361,7 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   }
   if (!failure.empty()) {
     glDeleteTextures(1, &texture_id);
-    throw ImageError("environment.texture: " + env.texture + ": cannot allocate " +
+    throw ImageError(where + "cannot allocate " +
                      bytes_text(double(image->width) * image->height * 16) + " for it (" + failure + ")");
   }
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
@@ -369,6 +373,10 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   PackedEnvironmentDistribution tables =
       pack_environment_distribution(build_environment_distribution(*image));
   upload_storage(buffers_[5], tables.data);
+  if (const std::string error = gl_error_text(); !error.empty())
+    throw ImageError(where + "cannot allocate " +
+                     bytes_text(double(tables.data.size()) * sizeof(float)) +
+                     " for its sampling tables (" + error + ")");
   uniforms_.env_distribution_size = glm::ivec2(tables.width, tables.height);
 }
 

@@ -241,7 +241,8 @@ Image load_stb(const std::filesystem::path& path, const std::vector<unsigned cha
 }
 
 // An 8-bit image kept 8-bit: RGBA as stored (grey becomes (g, g, g), missing alpha 255).
-TextureImage load_stb_rgba8(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+TextureImage load_stb_rgba8(const std::filesystem::path& path,
+                            const std::vector<unsigned char>& bytes) {
   StbSource source(bytes, 0);
   int width = 0, height = 0, channels = 0;
   std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(

@@ -93,6 +93,11 @@ void write_assets(const fs::path& dir) {
   // Whole headers and chunks, so that they pass the probe: only decoding finds the problems.
   test::write_png_with_short_idat(dir / "short-idat.png");
   test::write_exr_without_rgb(dir / "no-rgb.exr", pattern(4, 4));
+  // An offset table entry far past the end (the table follows the header, whose last attribute
+  // is screenWindowWidth, a float).
+  std::string exr = read_bytes(dir / "sky.exr");
+  exr.at(exr.find(std::string("screenWindowWidth\0float\0", 24)) + 24 + 4 + 4 + 1 + 3) = '\x7f';
+  write_bytes(dir / "far-offset.exr", exr);
   // Texels no light or colour can have, at (3, 2) green, (0, 0) red, (1, 3) alpha.
   for (const auto& [name, x, y, c, value] :
        {std::tuple{"nan.exr", 3, 2, 1, std::nanf("")}, std::tuple{"negative.exr", 0, 0, 0, -5.0f},
@@ -217,6 +222,9 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"EXR texture without RGB", [] { return edit("wood.png", "no-rgb.exr"); },
        "textures[0].path: cannot read image: {dir}/no-rgb.exr: OpenEXR file has neither R, G, B "
        "nor a single grey channel"},
+      {"EXR environment with an offset past the end", [] { return edit("sky.hdr", "far-offset.exr"); },
+       "environment.texture: cannot read image: {dir}/far-offset.exr: cannot decode OpenEXR data "
+       "(Invalid offset value in DecodeEXRImage.)"},
       {"NaN in the environment", [] { return edit("sky.hdr", "nan.exr"); },
        "environment.texture: cannot read image: {dir}/nan.exr: texel (3, 2) channel G is nan "
        "(texels must be finite and not negative)"},
