@@ -356,7 +356,11 @@ int run_render_command(int argc, char** argv) {
     renderer.set_options(o.estimator);
     if (o.estimator.clamp > 0)
       std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
-    renderer.sync(scene, width, height);
+    try {
+      renderer.sync(scene, width, height);
+    } catch (const ImageError& e) {  // the driver cannot hold the textures: name the project too
+      throw std::runtime_error(o.project + ": " + e.what());
+    }
     renderer.prepare_specialised_program();
     if (renderer.uses_bvh()) {
       const GpuRenderer::BvhStats& b = renderer.bvh_stats();

@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include "renderer/image.h"
+#include "renderer/texture_cache.h"
 
 namespace glint {
 
@@ -22,20 +23,23 @@ unsigned ThumbnailCache::get(const std::filesystem::path& file, int size) {
   if (auto it = cache_.find(key); it != cache_.end()) return it->second;
   unsigned tex = 0;
   try {
-    // HDR images are tonemapped crudely (clamped) and everything is shown sRGB-encoded.
-    Image img = load_image(file, ColorEncoding::srgb);
-    int w = std::max(1, std::min(size, img.width * size / std::max(img.width, img.height)));
-    int h = std::max(1, std::min(size, img.height * size / std::max(img.width, img.height)));
+    // HDR images are tonemapped crudely (clamped) and everything is shown sRGB-encoded. The
+    // texels are those the renderer uploads (decoded once, renderer/texture_cache.h).
+    const std::shared_ptr<const TextureImage> texture = load_texture_cached(file);
+    const TextureImage& img = *texture;
+    const int img_w = img.width(), img_h = img.height();
+    int w = std::max(1, std::min(size, img_w * size / std::max(img_w, img_h)));
+    int h = std::max(1, std::min(size, img_h * size / std::max(img_w, img_h)));
     std::vector<unsigned char> rgba(static_cast<size_t>(w) * h * 4);
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         // Box filter over the source block that maps to this thumbnail pixel.
-        int x0 = x * img.width / w, x1 = std::max(x0 + 1, (x + 1) * img.width / w);
-        int y0 = y * img.height / h, y1 = std::max(y0 + 1, (y + 1) * img.height / h);
+        int x0 = x * img_w / w, x1 = std::max(x0 + 1, (x + 1) * img_w / w);
+        int y0 = y * img_h / h, y1 = std::max(y0 + 1, (y + 1) * img_h / h);
         float sum[4] = {0, 0, 0, 0};
         for (int sy = y0; sy < y1; ++sy)
           for (int sx = x0; sx < x1; ++sx)
-            for (int c = 0; c < 4; ++c) sum[c] += img.at(sx, sy)[c];
+            for (int c = 0; c < 4; ++c) sum[c] += img.value(sx, sy, c, ColorEncoding::srgb);
         float n = float((x1 - x0) * (y1 - y0));
         for (int c = 0; c < 4; ++c) {
           float v = sum[c] / n;

@@ -7,10 +7,18 @@
 #include "editor/ui.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_images.h"
 
 namespace glint {
 namespace fs = std::filesystem;
 namespace {
+
+// Throws the first problem of the scene's images as loading the project would report it: an
+// unreadable or undecodable file, a bad texel, more texture memory than kMaxImageBytes.
+void refuse_image_problems(const Scene& scene) {
+  const std::vector<ProjectError> problems = check_scene_images(scene);
+  if (!problems.empty()) throw std::runtime_error(problems.front().what());
+}
 
 const char* const kUnsavedPopup = "Unsaved changes";
 const char* const kPathPopup = "Choose a file";
@@ -149,7 +157,11 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
       }
       case FilePurpose::add_texture:
       case FilePurpose::texture_slot: {
-        probe_image(path);  // refuse unreadable files before they reach the scene
+        {  // refuse what the project could not load before it reaches the scene
+          Scene candidate = doc.scene;
+          add_texture(candidate, path);
+          refuse_image_problems(candidate);
+        }
         int t = add_texture(doc.scene, path);
         if (purpose == FilePurpose::texture_slot && state.slot_material >= 0 &&
             state.slot_material < static_cast<int>(doc.scene.materials.size())) {
@@ -164,7 +176,10 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
         ImageInfo info = probe_image(path);
         if (!info.high_dynamic_range && path.extension() != ".hdr" && path.extension() != ".exr")
           throw std::runtime_error(file + ": the environment must be an .hdr or .exr image");
-        doc.scene.environment.texture = project_relative(doc.scene, path);
+        Scene candidate = doc.scene;
+        candidate.environment.texture = project_relative(doc.scene, path);
+        refuse_image_problems(candidate);
+        doc.scene.environment.texture = candidate.environment.texture;
         break;
       }
       case FilePurpose::export_output: state.export_settings.output = path; break;

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <limits>
+#include <memory>
 #include <thread>
 #include <stdexcept>
 #include <vector>
@@ -14,6 +17,8 @@
 #include "renderer/gpu_scene.h"
 #include "renderer/program_worker.h"
 #include "renderer/project_file.h"
+#include "renderer/shader_lib.h"
+#include "renderer/texture_cache.h"
 
 namespace glint {
 namespace {
@@ -25,6 +30,22 @@ void upload_storage(GLuint buffer, const std::vector<T>& data) {
   if (padded.empty()) padded.push_back(T{});
   glNamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size() * sizeof(T)), padded.data(),
                     GL_STATIC_DRAW);
+}
+
+void clear_gl_errors() {
+  while (glGetError() != GL_NO_ERROR) {
+  }
+}
+
+// The first OpenGL error since the last call (all are cleared), or "" if none.
+std::string gl_error_text() {
+  const GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return "";
+  clear_gl_errors();
+  if (error == GL_OUT_OF_MEMORY) return "the OpenGL driver is out of memory";
+  char text[64];
+  std::snprintf(text, sizeof text, "OpenGL error 0x%04x", error);
+  return text;
 }
 
 GLuint make_texture_2d(GLenum internal_format, int width, int height) {
@@ -71,7 +92,8 @@ GpuRenderer::~GpuRenderer() {
   glDeleteBuffers(kBuffers, buffers_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
-  if (texture_array_) glDeleteTextures(1, &texture_array_);
+  glDeleteTextures(2, texel_textures_);
+  glDeleteBuffers(2, texel_buffers_);
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
 }
 
@@ -108,8 +130,11 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   SceneDigests d = digest_scene(scene);
   SyncResult result;
   const glm::dvec3 origin = render_origin(scene.camera.position);
+  // The textures too: the materials' layer indices follow the texture list, and a texture
+  // whose file changed must be uploaded with the layers that read it.
   const bool geometry_changed = first_sync_ || d.geometry != digests_.geometry ||
-                                d.materials != digests_.materials || origin != origin_;
+                                d.materials != digests_.materials ||
+                                d.textures != digests_.textures || origin != origin_;
   PackedScene packed;
   if (geometry_changed) packed = pack_scene(scene, origin);
   // Images first: if one fails to load, nothing has changed yet. Textures are reloaded only
@@ -202,52 +227,162 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   bvh_valid_ = false;  // refitted or rebuilt by sync if the BVH is used
 }
 
+// Texture storage. One GL_TEXTURE_2D_ARRAY sized to the largest texture made memory follow
+// the largest width times the largest height times the count (a 16384x1 and a 1x16384 texture
+// took 8 GiB) and capped the count at GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on llvmpipe). The
+// shader filters by hand (lib/mapping.glsl), so each texture is instead a row-major run of
+// texels in a buffer texture: memory is the sum of the real sizes, the count is bounded only
+// by the layer records' storage buffer, and 8-bit textures keep 4 bytes a texel. There are two
+// buffers because a buffer texture has one format (RGBA8, RGBA32F). An atlas would need packing
+// and would still cap a side; arrays per size class would need a sampler per class.
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
-  std::vector<Image> images;
-  for (const TextureLayer& layer : layers)
-    images.push_back(load_image(resolve_asset_path(scene, scene.textures[layer.texture].path),
-                                layer.encoding));
-  // One array sized to the largest texture; each layer records its own size and the shader
-  // filters by hand within it (textures of different sizes share the array).
-  int w = 1, h = 1;
-  for (const Image& img : images) {
-    w = std::max(w, img.width);
-    h = std::max(h, img.height);
+  auto json_path = [](const TextureLayer& layer) {
+    return "textures[" + std::to_string(layer.texture) + "].path";
+  };
+  // Decoded once, by load_project when it checked the files (renderer/texture_cache.h).
+  std::vector<std::shared_ptr<const TextureImage>> images;
+  std::vector<std::filesystem::path> files;
+  for (const TextureLayer& layer : layers) {
+    try {
+      files.push_back(resolve_asset_path(scene, scene.textures[layer.texture].path));
+      images.push_back(load_texture_cached(files.back()));
+    } catch (const ImageError& e) {
+      throw ImageError(json_path(layer) + ": " + e.what());
+    }
   }
-  std::vector<glm::ivec4> sizes;
-  if (texture_array_) glDeleteTextures(1, &texture_array_);
-  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture_array_);
-  glTextureStorage3D(texture_array_, 1, GL_RGBA32F, w, h, std::max<int>(1, images.size()));
-  for (size_t i = 0; i < images.size(); ++i) {
-    glTextureSubImage3D(texture_array_, 0, 0, 0, static_cast<GLint>(i), images[i].width,
-                        images[i].height, 1, GL_RGBA, GL_FLOAT, images[i].pixels.data());
-    sizes.emplace_back(images[i].width, images[i].height, 0, 0);
+  // Offsets are ints in the shader, and the driver caps a buffer texture's size.
+  int64_t limit = renderer_options_.max_texture_buffer_texels;
+  if (limit <= 0) {
+    GLint64 driver = 0;
+    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &driver);
+    limit = driver;
   }
-  upload_storage(buffers_[3], sizes);
+  limit = std::min<int64_t>(limit, std::numeric_limits<int>::max());
+  // Each file's texels once, also when several layers read them (colour and roughness).
+  struct Run {
+    const TextureImage* image;
+    int64_t first;
+  };
+  std::vector<Run> runs[2];  // 8-bit, float
+  int64_t texels[2] = {0, 0};
+  std::vector<glm::ivec4> records;
+  for (size_t i = 0; i < layers.size(); ++i) {
+    const TextureImage& image = *images[i];
+    const int kind = image.eight_bit() ? 0 : 1;
+    auto run = std::find_if(runs[kind].begin(), runs[kind].end(),
+                            [&](const Run& r) { return r.image == &image; });
+    if (run == runs[kind].end()) {
+      runs[kind].push_back({&image, texels[kind]});
+      run = runs[kind].end() - 1;
+      texels[kind] += int64_t(image.width()) * image.height();
+      if (texels[kind] > limit)
+        throw ImageError(json_path(layers[i]) + ": " + files[i].string() + ": the textures need " +
+                         std::to_string(texels[kind]) + (kind ? " float" : " 8-bit") +
+                         " texels, more than this OpenGL driver holds (" + std::to_string(limit) +
+                         " texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
+    }
+    const int format = kind ? gpu::TEXELS_FLOAT
+                            : layers[i].encoding == ColorEncoding::srgb ? gpu::TEXELS_8BIT_SRGB
+                                                                        : gpu::TEXELS_8BIT_LINEAR;
+    records.emplace_back(image.width(), image.height(), static_cast<int>(run->first), format);
+  }
+  // New buffers first: should the driver refuse one, the previous textures stay in place.
+  clear_gl_errors();
+  GLuint buffers[2] = {0, 0}, textures[2] = {0, 0};
+  glCreateBuffers(2, buffers);
+  glCreateTextures(GL_TEXTURE_BUFFER, 2, textures);
+  const GLenum formats[2] = {GL_RGBA8, GL_RGBA32F};
+  const int64_t texel_bytes[2] = {4, 16};
+  std::string failure;
+  for (int k = 0; k < 2 && failure.empty(); ++k) {
+    // Never empty: a buffer texture needs storage to be complete.
+    const int64_t bytes = std::max<int64_t>(1, texels[k]) * texel_bytes[k];
+    glNamedBufferStorage(buffers[k], static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    failure = gl_error_text();
+    if (!failure.empty()) {
+      failure = "cannot allocate " + bytes_text(double(bytes)) + " for the " +
+                (k ? "float" : "8-bit") + " textures (" + failure + ")";
+      break;
+    }
+    for (const Run& run : runs[k]) {
+      const void* data = k ? static_cast<const void*>(run.image->linear.pixels.data())
+                           : static_cast<const void*>(run.image->rgba8.data());
+      glNamedBufferSubData(buffers[k], static_cast<GLintptr>(run.first * texel_bytes[k]),
+                           static_cast<GLsizeiptr>(run.image->byte_size()), data);
+    }
+    glTextureBuffer(textures[k], formats[k], buffers[k]);
+    failure = gl_error_text();
+    if (!failure.empty()) failure = "cannot upload the textures (" + failure + ")";
+  }
+  if (!failure.empty()) {
+    glDeleteTextures(2, textures);
+    glDeleteBuffers(2, buffers);
+    throw ImageError("textures: " + failure);  // all of them together
+  }
+  glDeleteTextures(2, texel_textures_);
+  glDeleteBuffers(2, texel_buffers_);
+  std::copy(buffers, buffers + 2, texel_buffers_);
+  std::copy(textures, textures + 2, texel_textures_);
+  upload_storage(buffers_[3], records);
   layers_ = layers;
 }
 
 void GpuRenderer::upload_environment(const Scene& scene) {
   const Environment& env = scene.environment;
-  Image image;
+  std::shared_ptr<const TextureImage> texture;
+  Image converted;
+  const Image* image = &converted;
+  // Problems read "environment.texture: FILE: ...", as the loader's do.
+  std::string where = "environment.texture: ";
+  if (!env.texture.empty()) where += resolve_asset_path(scene, env.texture).string() + ": ";
   if (!env.texture.empty()) {
-    image = load_image(resolve_asset_path(scene, env.texture), ColorEncoding::linear);
+    try {
+      texture = load_texture_cached(resolve_asset_path(scene, env.texture));
+    } catch (const ImageError& e) {
+      throw ImageError(std::string("environment.texture: ") + e.what());
+    }
+    if (texture->eight_bit())
+      converted = to_linear_image(*texture, ColorEncoding::linear);
+    else
+      image = &texture->linear;
   } else {
-    image.width = image.height = 1;
-    image.pixels = {1, 1, 1, 1};
+    converted.width = converted.height = 1;
+    converted.pixels = {1, 1, 1, 1};
+  }
+  GLint max_side = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+  if (image->width > max_side || image->height > max_side)
+    throw ImageError(where + std::to_string(image->width) +
+                     "x" + std::to_string(image->height) + " is more than this OpenGL driver holds (" +
+                     std::to_string(max_side) + " texels per side, GL_MAX_TEXTURE_SIZE)");
+  clear_gl_errors();
+  GLuint texture_id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture_id);
+  glTextureStorage2D(texture_id, 1, GL_RGBA32F, image->width, image->height);
+  std::string failure = gl_error_text();
+  if (failure.empty()) {
+    glTextureSubImage2D(texture_id, 0, 0, 0, image->width, image->height, GL_RGBA, GL_FLOAT,
+                        image->pixels.data());
+    failure = gl_error_text();
+  }
+  if (!failure.empty()) {
+    glDeleteTextures(1, &texture_id);
+    throw ImageError(where + "cannot allocate " +
+                     bytes_text(double(image->width) * image->height * 16) + " for it (" + failure + ")");
   }
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
-  glCreateTextures(GL_TEXTURE_2D, 1, &environment_texture_);
-  glTextureStorage2D(environment_texture_, 1, GL_RGBA32F, image.width, image.height);
-  glTextureSubImage2D(environment_texture_, 0, 0, 0, image.width, image.height, GL_RGBA, GL_FLOAT,
-                      image.pixels.data());
+  environment_texture_ = texture_id;
   glTextureParameteri(environment_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   PackedEnvironmentDistribution tables =
-      pack_environment_distribution(build_environment_distribution(image));
+      pack_environment_distribution(build_environment_distribution(*image));
   upload_storage(buffers_[5], tables.data);
+  if (const std::string error = gl_error_text(); !error.empty())
+    throw ImageError(where + "cannot allocate " +
+                     bytes_text(double(tables.data.size()) * sizeof(float)) +
+                     " for its sampling tables (" + error + ")");
   uniforms_.env_distribution_size = glm::ivec2(tables.width, tables.height);
 }
 
@@ -387,7 +522,7 @@ void GpuRenderer::prepare_specialised_program() {
 }
 
 // A job for the worker: link the variant, then draw one pixel with it in the state a trace pass
-// draws in (two RGBA32F targets; this renderer's textures on units 0-3 and buffers on 0-5, whose
+// draws in (two RGBA32F targets; this renderer's textures on units 0-4 and buffers on 0-7, whose
 // formats and sampling enter the compiled code's key), so that the driver compiles there the
 // code this renderer's first pass will look up. The names are captured now; should the renderer
 // replace a texture meanwhile, the driver compiles again at that first pass (only slower).
@@ -397,8 +532,8 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
   job->fragment = "trace.frag";
   job->defines = defines;
   const TraceUniforms uniforms = uniforms_;
-  const GLuint textures[4] = {accumulation_[current_], texture_array_, environment_texture_,
-                              compensation_[current_]};
+  const GLuint textures[5] = {accumulation_[current_], texel_textures_[0], environment_texture_,
+                              compensation_[current_], texel_textures_[1]};
   std::vector<GLuint> buffers(buffers_, buffers_ + kBuffers);
   job->warm_up = [uniforms, textures, buffers](GlProgram& p) {
     // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
@@ -410,7 +545,7 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
     for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
-    for (GLuint i = 0; i < 4; ++i) glBindTextureUnit(i, textures[i]);
+    for (GLuint i = 0; i < 5; ++i) glBindTextureUnit(i, textures[i]);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
@@ -454,9 +589,10 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   glUseProgram(p.id());
   for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(0, accumulation_[current_]);
-  glBindTextureUnit(1, texture_array_);
+  glBindTextureUnit(1, texel_textures_[0]);
   glBindTextureUnit(2, environment_texture_);
   glBindTextureUnit(3, compensation_[current_]);
+  glBindTextureUnit(4, texel_textures_[1]);
   glBindVertexArray(vao_);
   return p;
 }

@@ -45,6 +45,9 @@ struct GpuRendererOptions {
   // Appended to every specialised program's defines. Tests put a nonce here, so that the
   // driver's shader cache has never seen the program and its compile is really timed.
   std::string extra_defines;
+  // Texels a texture buffer may hold; 0 for the driver's GL_MAX_TEXTURE_BUFFER_SIZE. Tests set
+  // a small one to reach the refusal that a driver's limit gives.
+  int64_t max_texture_buffer_texels = 0;
 };
 
 class GpuRenderer {
@@ -58,8 +61,10 @@ class GpuRenderer {
   GpuRenderer& operator=(const GpuRenderer&) = delete;
 
   // Brings the GPU state up to date with a validated scene rendered at width x height.
-  // Throws ImageError if a texture cannot be loaded, and std::runtime_error for a size beyond
-  // a project's film limits (check_film_size); the previous state is then kept.
+  // Throws ImageError if a texture cannot be loaded or the driver cannot hold the textures
+  // (the message names the JSON path, e.g. textures[2].path, and the limit), and
+  // std::runtime_error for a size beyond a project's film limits (check_film_size); the
+  // previous state is then kept.
   SyncResult sync(const Scene& scene, int width, int height);
 
   // Takes effect at the next sync, which then restarts the accumulation if they changed.
@@ -183,7 +188,10 @@ class GpuRenderer {
   static constexpr int kBuffers = 8;
   GLuint buffers_[kBuffers] = {};  // spheres, quads, materials, layer sizes, lights,
                                    // environment-sampling tables, BVH nodes, BVH primitives
-  GLuint texture_array_ = 0;
+  // Texel buffers of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F, and
+  // the buffer textures that read them.
+  GLuint texel_buffers_[2] = {0, 0};
+  GLuint texel_textures_[2] = {0, 0};
   GLuint environment_texture_ = 0;
 
   int current_ = 0;  // accumulation_[current_] holds the latest result
@@ -207,7 +215,7 @@ class GpuRenderer {
   float bvh_extent_ = 0;    // the ray extent its boxes are padded for
   double bvh_built_cost_ = 0;  // SAH cost after the last full build
   BvhStats bvh_stats_;
-  std::vector<TextureLayer> layers_;  // what texture_array_ holds, layer by layer
+  std::vector<TextureLayer> layers_;  // what the texel buffers hold, layer by layer
   std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
   double trace_gpu_seconds_ = 0;
 };

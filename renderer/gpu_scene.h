@@ -1,6 +1,6 @@
 // The scene packed into the std430 layouts of shaders/trace.frag (CPU side, no GL), and the
-// assignment of texture-array layers. One layer per (texture, encoding) pair in use: a texture
-// used both as colour (sRGB) and as roughness (linear) is decoded twice.
+// assignment of texture layers. One layer per (texture, encoding) pair in use: a texture used
+// both as colour (sRGB) and as roughness (linear) has two layers over the same texels.
 #pragma once
 
 #include <vector>

@@ -48,6 +48,33 @@ ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::f
 Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& label,
                       ColorEncoding encoding);
 
+// A texture as the renderer keeps it, in memory and on the GPU. 8-bit sources stay 8-bit:
+// `rgba8` holds their RGBA values as stored in the file (sRGB not decoded: the shader decodes
+// each tap, so one copy serves a texture used both as colour and as data), 4 bytes a texel.
+// 16-bit, HDR and EXR sources are linear RGBA float in `linear`, 16 bytes a texel. `linear`'s
+// width and height are set in both cases. Every float texel is finite and non-negative.
+struct TextureImage {
+  Image linear;
+  std::vector<unsigned char> rgba8;
+
+  bool eight_bit() const { return linear.pixels.empty(); }
+  int width() const { return linear.width; }
+  int height() const { return linear.height; }
+  size_t byte_size() const { return rgba8.size() + linear.pixels.size() * sizeof(float); }
+  // Channel c of texel (x, y) as load_image would give it with `encoding`.
+  float value(int x, int y, int c, ColorEncoding encoding) const;
+};
+
+// Reads a texture or environment file. Throws ImageError naming the file for everything
+// load_image refuses and for a texel that is not finite or is negative (NaN, Inf, -5 in an
+// HDR or EXR file), naming the first such texel (x, y, channel).
+TextureImage load_texture_image(const std::filesystem::path& path);
+TextureImage load_texture_image_data(const std::vector<unsigned char>& bytes,
+                                     const std::filesystem::path& label);
+
+// The same texels as linear RGBA float (a copy), as load_image(path, encoding) reads them.
+Image to_linear_image(const TextureImage& texture, ColorEncoding encoding);
+
 // Writes by extension: .png (values clamped to [0,1], written as 8-bit without further encoding),
 // .hdr (RGB), .exr (RGBA float32), atomically (write_file_atomically, atomic_file.h). Throws
 // ImageError naming the file and the OS reason on failure (the old file is then unchanged)

@@ -243,6 +243,47 @@ Image load_stb(const std::filesystem::path& path, const std::vector<unsigned cha
   });
 }
 
+// An 8-bit image kept 8-bit: RGBA as stored (grey becomes (g, g, g), missing alpha 255).
+TextureImage load_stb_rgba8(const std::filesystem::path& path,
+                            const std::vector<unsigned char>& bytes) {
+  StbSource source(bytes, 0);
+  int width = 0, height = 0, channels = 0;
+  std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
+      stbi_load_from_callbacks(&StbSource::callbacks, &source, &width, &height, &channels, 0),
+      &stbi_image_free);
+  if (source.overrun) fail(path, "file is truncated");
+  if (!data) fail(path, "cannot decode image (" + stb_reason() + ")");
+  check_dimensions(path, width, height);
+  if (channels < 1 || channels > 4) fail(path, "unsupported channel count");
+  TextureImage texture;
+  texture.linear.width = width;
+  texture.linear.height = height;
+  const size_t count = static_cast<size_t>(width) * height;
+  texture.rgba8.resize(count * 4);
+  for (size_t i = 0; i < count; ++i) {
+    const stbi_uc* in = data.get() + i * channels;
+    unsigned char* out = &texture.rgba8[i * 4];
+    for (int c = 0; c < 3; ++c) out[c] = channels <= 2 ? in[0] : in[c];
+    out[3] = (channels == 2 || channels == 4) ? in[channels - 1] : 255;
+  }
+  return texture;
+}
+
+// A texel that no light or colour can have: NaN or Inf blackens whatever it reaches (the
+// renderer discards non-finite samples) and a negative one makes negative radiance.
+void check_texels(const std::filesystem::path& path, const Image& image) {
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const float v = image.pixels[i];
+    if (std::isfinite(v) && v >= 0.0f) continue;
+    const size_t texel = i / 4;
+    char text[160];
+    std::snprintf(text, sizeof text, "texel (%zu, %zu) channel %c is %g (texels must be finite and not negative)",
+                  texel % static_cast<size_t>(image.width), texel / static_cast<size_t>(image.width),
+                  "RGBA"[i % 4], static_cast<double>(v));
+    fail(path, text);
+  }
+}
+
 // stb_image checks neither the CRC of PNG chunks nor zlib's Adler-32, so a corrupted file can
 // decode to wrong pixels without an error. The chunk layout and CRCs (PNG spec, ISO 15948
 // sections 5.3 and 15.3 / annex D: CRC-32 with polynomial 0xEDB88320, over type and data) are
@@ -524,13 +565,60 @@ ImageInfo probe_image(const std::filesystem::path& path) {
   return probe_bytes(path, bytes, format);
 }
 
-Image load_image(const std::filesystem::path& path, ColorEncoding encoding) {
-  // stb takes an int length, so files of 2 GiB or more are refused up front.
+// The whole file for a decoder. stb takes an int length, so files of 2 GiB or more are refused
+// up front.
+static std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size >= static_cast<uintmax_t>(std::numeric_limits<int>::max()))
     fail(path, "file is too large");
-  return load_image_data(read_file(path, std::numeric_limits<int>::max()), path, encoding);
+  return read_file(path, std::numeric_limits<int>::max());
+}
+
+Image load_image(const std::filesystem::path& path, ColorEncoding encoding) {
+  return load_image_data(read_image_file(path), path, encoding);
+}
+
+TextureImage load_texture_image(const std::filesystem::path& path) {
+  return load_texture_image_data(read_image_file(path), path);
+}
+
+TextureImage load_texture_image_data(const std::vector<unsigned char>& bytes,
+                                     const std::filesystem::path& path) {
+  if (bytes.empty()) fail(path, "file is empty");
+  if (bytes.size() >= static_cast<size_t>(std::numeric_limits<int>::max())) fail(path, "file is too large");
+  const Format format = require_format(path, bytes);
+  if (format == Format::png) check_png_chunks(path, bytes);
+  TextureImage texture;
+  if (format != Format::openexr) {
+    const StbInfo info = stb_info(path, bytes);
+    check_dimensions(path, info.width, info.height);
+    if (!info.is_hdr && !info.is_16_bit) return load_stb_rgba8(path, bytes);
+    texture.linear = load_stb(path, bytes, ColorEncoding::linear);
+  } else {
+    texture.linear = load_exr(path, bytes);
+  }
+  check_texels(path, texture.linear);
+  return texture;
+}
+
+float TextureImage::value(int x, int y, int c, ColorEncoding encoding) const {
+  const size_t i = (static_cast<size_t>(y) * linear.width + x) * 4 + c;
+  if (!eight_bit()) return linear.pixels[i];
+  return encoding == ColorEncoding::srgb && c < 3 ? srgb_table()[rgba8[i]]
+                                                  : static_cast<float>(rgba8[i]) / 255.0f;
+}
+
+Image to_linear_image(const TextureImage& texture, ColorEncoding encoding) {
+  if (!texture.eight_bit()) return texture.linear;
+  Image image;
+  image.width = texture.width();
+  image.height = texture.height();
+  image.pixels.resize(texture.rgba8.size());
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 4; ++c) image.at(x, y)[c] = texture.value(x, y, c, encoding);
+  return image;
 }
 
 Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& path,

@@ -16,6 +16,7 @@
 #include "renderer/float_limits.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
+#include "renderer/scene_images.h"
 
 namespace glint {
 
@@ -53,15 +54,6 @@ constexpr int kMaxBounces = 1024;
 std::string quote_name(const std::string& text) {
   return Json(json_fields::clip(text, json_fields::kMaxQuotedString))
       .dump(-1, ' ', false, Json::error_handler_t::replace);
-}
-
-// "335.3 GiB", "512.0 MiB".
-std::string bytes_text(double bytes) {
-  const bool gib = bytes >= double(1 << 30);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.1f %s", bytes / double(gib ? 1 << 30 : 1 << 20),
-                gib ? "GiB" : "MiB");
-  return buffer;
 }
 
 // The array sizes of load_project's limits (project_file.h).
@@ -172,7 +164,7 @@ void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out, 
 
 class Checker {
  public:
-  Checker(const Scene& scene, bool check_files) : scene_(scene), check_files_(check_files) {}
+  explicit Checker(const Scene& scene) : scene_(scene) {}
   std::vector<ProjectError> problems;
 
   void add(std::string path, std::string problem) {
@@ -226,18 +218,15 @@ class Checker {
     if (!name.empty() && find_texture(scene_, name) < 0)
       add(path, "unknown texture " + quote_name(name));
   }
-  void image_file(const std::string& path, const std::string& file) {
-    if (file.empty() || !check_files_) return;
-    try {
-      probe_image(resolve_asset_path(scene_, file));
-    } catch (const std::exception& e) {  // ImageError, or a filesystem error
-      add(path, std::string("cannot read image: ") + e.what());
-    }
+  // The files themselves are checked by check_scene_images (scene_images.h).
+  void image_path(const std::string& path, const std::string& file) {
+    // The OS would see only the part before the NUL: another file than the one named.
+    if (file.find('\0') != std::string::npos)
+      add(path, "contains a NUL character (\\u0000), which no file name can hold");
   }
 
  private:
   const Scene& scene_;
-  bool check_files_;
 };
 
 void check_camera(Checker& c, const Camera& cam) {
@@ -294,6 +283,14 @@ fs::path folder_identity(const fs::path& folder) {
 }
 
 }  // namespace
+
+std::string bytes_text(double bytes) {
+  const bool gib = bytes >= double(1 << 30);
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.1f %s", bytes / double(gib ? 1 << 30 : 1 << 20),
+                gib ? "GiB" : "MiB");
+  return buffer;
+}
 
 ProjectError::ProjectError(std::string file_, std::string json_path_, std::string problem_)
     : std::runtime_error(error_message(file_, json_path_, problem_)),
@@ -396,7 +393,7 @@ std::optional<ProjectError> check_film_size(int64_t width, int64_t height) {
 }
 
 std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
-  Checker c(scene, check_files);
+  Checker c(scene);
   check_camera(c, scene.camera);
   if (const auto problem = check_film_size(scene.film.width, scene.film.height))
     c.problems.push_back(*problem);
@@ -409,7 +406,7 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
 
   const Environment& env = scene.environment;
   c.non_negative("environment.color", env.color);
-  c.image_file("environment.texture", env.texture);
+  c.image_path("environment.texture", env.texture);
   c.at_least("environment.intensity", env.intensity, 0);
   c.finite("environment.rotation_deg", env.rotation_deg);
 
@@ -420,7 +417,7 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
     c.not_empty(child_path(path, "name"), t.name);
     c.unique(texture_names, child_path(path, "name"), t.name, "texture");
     c.not_empty(child_path(path, "path"), t.path);
-    c.image_file(child_path(path, "path"), t.path);
+    c.image_path(child_path(path, "path"), t.path);
   }
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
@@ -456,6 +453,8 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
     for (size_t k = 0; k < 4; ++k) c.finite(index_path(child_path(path, "uvs"), k), q.uvs[k]);
   }
   for (ProjectError& problem : check_float_limits(scene)) c.problems.push_back(std::move(problem));
+  if (check_files)
+    for (ProjectError& problem : check_scene_images(scene)) c.problems.push_back(std::move(problem));
   return c.problems;
 }
 

@@ -56,7 +56,8 @@ Scene load_project_text(const std::string& text, const std::string& file_label,
 
 // Parses a JSON document as a scene (unknown keys, wrong types, bad values are errors).
 // `file_label` only names the source in errors. Image files are checked for existence and
-// readability (relative to base_dir) when check_files is true.
+// readability (relative to base_dir) when check_files is true: each is decoded (once, see
+// renderer/texture_cache.h) and checked within kMaxImageBytes (renderer/scene_images.h).
 // "format": "glint-project" and "version": 1 are required. Validates like validate_scene.
 Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
                       const std::filesystem::path& base_dir, bool check_files = true);
@@ -93,6 +94,9 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files = 
 // film would need 633.3 GiB of GPU buffers (68 bytes per pixel), the limit is 4.2 GiB
 // (67108864 pixels, e.g. 8192x8192)".
 std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
+
+// "335.3 GiB", "512.0 MiB": memory sizes in messages.
+std::string bytes_text(double bytes);
 
 // The text that save_project writes to `file`, without writing anything (the in-memory half of
 // save_project; load_project_text is the other direction). Relative asset paths are rewritten

@@ -36,7 +36,7 @@ struct GpuMaterial {
   vec4 color;     // rgb colour, a: type
   vec4 emission;  // rgb
   vec4 params;    // roughness, ior, opacity
-  ivec4 layers;   // texture-array layers of colour, emission, roughness; -1 for none
+  ivec4 layers;   // texture layers of colour, emission, roughness; -1 for none
 };
 
 layout(std430, binding = 0) readonly buffer Spheres { GpuSphere spheres[]; };
@@ -47,7 +47,7 @@ struct GpuLight {
   vec4 select;   // x: pdf of picking it, y: cdf
 };
 
-layout(std430, binding = 3) readonly buffer LayerSizes { ivec4 layer_sizes[]; };
+layout(std430, binding = 3) readonly buffer TextureLayers { ivec4 texture_layers[]; };  // see lib/mapping.glsl
 layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
 // The BVH of renderer/bvh.h (bound only when u_use_bvh).
 layout(std430, binding = 6) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
@@ -55,7 +55,8 @@ layout(std430, binding = 7) readonly buffer BvhPrimitives { int bvh_primitives[]
 
 layout(binding = 0) uniform sampler2D u_previous;
 layout(binding = 3) uniform sampler2D u_previous_compensation;
-layout(binding = 1) uniform sampler2DArray u_textures;
+layout(binding = 1) uniform samplerBuffer u_texels_8bit;   // RGBA8, as stored
+layout(binding = 4) uniform samplerBuffer u_texels_float;  // RGBA32F
 layout(binding = 2) uniform sampler2D u_environment;
 
 uniform ivec2 u_resolution;
@@ -119,16 +120,27 @@ const uint DIMENSIONS_PER_BOUNCE = 2u;
 uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
 uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
 
+#if !defined(GLINT_NO_TEXTURES)
+vec4 fetch_texel(ivec4 layer, int x, int y) {
+  int i = texel_index(layer, x, y);
+  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, i);
+  vec4 t = texelFetch(u_texels_8bit, i);
+  if (layer.w == TEXELS_8BIT_SRGB) t.rgb = vec3(srgb_decode(t.r), srgb_decode(t.g), srgb_decode(t.b));
+  return t;
+}
+#endif
+
 vec4 texture_lookup(int layer, vec2 uv) {
 #if defined(GLINT_NO_TEXTURES)
   return vec4(1.0);  // no used material has a texture: every layer is -1
 #else
   if (layer < 0) return vec4(1.0);
-  BilinearTaps taps = bilinear_taps(uv, layer_sizes[layer].xy);
-  vec4 a = texelFetch(u_textures, ivec3(taps.texels.x, taps.texels.y, layer), 0);
-  vec4 b = texelFetch(u_textures, ivec3(taps.texels.z, taps.texels.y, layer), 0);
-  vec4 c = texelFetch(u_textures, ivec3(taps.texels.x, taps.texels.w, layer), 0);
-  vec4 d = texelFetch(u_textures, ivec3(taps.texels.z, taps.texels.w, layer), 0);
+  ivec4 l = texture_layers[layer];
+  BilinearTaps taps = bilinear_taps(uv, l.xy);
+  vec4 a = fetch_texel(l, taps.texels.x, taps.texels.y);
+  vec4 b = fetch_texel(l, taps.texels.z, taps.texels.y);
+  vec4 c = fetch_texel(l, taps.texels.x, taps.texels.w);
+  vec4 d = fetch_texel(l, taps.texels.z, taps.texels.w);
   return mix(mix(a, b, taps.weight.x), mix(c, d, taps.weight.x), taps.weight.y);
 #endif
 }

@@ -50,4 +50,20 @@ BilinearTaps bilinear_taps(vec2 uv, ivec2 size) {
                       vec2(x - fx, y - fy));
 }
 
+// Where a texture's texels are (renderer/gpu_renderer.cpp, upload_textures): one texel buffer
+// for 8-bit textures (RGBA8 as stored) and one for float ones (RGBA32F), each texture a
+// row-major run of texels in one of them. Its layer record is (width, height, first texel,
+// kind); 8-bit sRGB texels are decoded per tap with srgb_decode.
+const int TEXELS_8BIT_LINEAR = 0;
+const int TEXELS_8BIT_SRGB = 1;
+const int TEXELS_FLOAT = 2;
+
+int texel_index(ivec4 layer, int x, int y) { return layer.z + y * layer.x + x; }
+
+// sRGB-encoded value to linear (IEC 61966-2-1), as srgb_to_linear in renderer/image_io.cpp.
+float srgb_decode(float c) {
+  if (c <= 0.04045f) return c / 12.92f;
+  return pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
 #endif

@@ -8,6 +8,7 @@
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor_test_util.h"
+#include "tests/image_fixtures.h"
 
 namespace glint {
 namespace {
@@ -34,12 +35,18 @@ TEST(FailedOpen, LeavesThePreviousDocumentUntouched) {
                     {"center": [0, 0, 0], "radius": -1, "material": "m"}]})"},
       {"texture.glint", R"({"format": "glint-project", "version": 1,
         "textures": [{"name": "t", "path": "missing.png"}]})"},
+      {"decode.glint", R"({"format": "glint-project", "version": 1,
+        "textures": [{"name": "t", "path": "short.png"}]})"},
   };
+  // Passes the header probe, fails to decode: found on open, not when first rendered.
+  test::write_png_with_short_idat(dir / "short.png");
   for (const auto& [name, text] : files) std::ofstream(dir / name) << text;
   const std::vector<std::pair<std::string, std::string>> expected = {
       {"truncated.glint", "invalid JSON"},
       {"radius.glint", "spheres[1].radius: must be greater than 0 (got -1)"},
       {"texture.glint", "textures[0].path: cannot read image"},
+      {"decode.glint", "textures[0].path: cannot read image: " + (dir / "short.png").string() +
+                           ": cannot decode image"},
       {"absent.glint", "no such file"},
   };
   EditorState state;

@@ -19,6 +19,7 @@
 #include "editor_test_util.h"
 #include "renderer/gl_context.h"
 #include "renderer/project_file.h"
+#include "tests/image_fixtures.h"
 
 namespace glint {
 namespace {
@@ -272,6 +273,28 @@ TEST_F(UiTest, AddSphereGlossyMaterialWithColourTexture) {
   frame();
   EXPECT_EQ(state_.stats.scene_problem, "");
   EXPECT_GT(viewport_->renderer().sample_count(), 0);
+}
+
+// A texture or environment the project could not load (it decodes only in part, a texel is
+// NaN) is refused with the reason when chosen, never added to the scene.
+TEST_F(UiTest, ImagesThatCannotLoadAreRefusedWhenChosen) {
+  test::TempDir dir;
+  test::write_png_with_short_idat(dir / "short.png");
+  Image nan_sky{2, 1, {1, 1, 1, 1, 1, std::nanf(""), 1, 1}};
+  save_image(dir / "nan.exr", nan_sky);
+  const Scene before = doc_.scene;
+  state_.slot_material = 0;
+  state_.slot_index = 0;
+  apply_chosen_file(doc_, state_, FilePurpose::texture_slot, (dir / "short.png").string());
+  EXPECT_NE(state_.error.find((dir / "short.png").string() + ": cannot decode image"), std::string::npos)
+      << state_.error;
+  state_.error.clear();
+  apply_chosen_file(doc_, state_, FilePurpose::environment, (dir / "nan.exr").string());
+  EXPECT_NE(state_.error.find("environment.texture: cannot read image: " + (dir / "nan.exr").string() +
+                              ": texel (1, 0) channel G is nan"),
+            std::string::npos)
+      << state_.error;
+  EXPECT_EQ(doc_.scene, before);
 }
 
 TEST_F(UiTest, SaveAsThroughThePromptThenCtrlSThenReopen) {

@@ -1,6 +1,7 @@
 // libFuzzer target: bytes through the image readers (PNG, JPEG and Radiance HDR via stb_image,
-// OpenEXR via tinyexr, told apart by signature). Any input must either decode to an image that
-// agrees with its header probe or throw ImageError.
+// OpenEXR via tinyexr, told apart by signature), as images and as textures. Any input must
+// either decode to an image that agrees with its header probe or throw ImageError.
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <vector>
@@ -21,6 +22,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         image.pixels.size() != size_t(image.width) * image.height * 4)
       std::abort();
     if (info.width != 0 && (info.width != image.width || info.height != image.height)) std::abort();
+  } catch (const glint::ImageError&) {
+  }
+  // The texture reader (8-bit kept 8-bit, texels checked): the same size, and a consistent
+  // store (bytes for 8-bit sources, finite non-negative floats otherwise).
+  try {
+    const glint::TextureImage texture = glint::load_texture_image_data(bytes, "fuzz");
+    const size_t texels = size_t(texture.width()) * texture.height();
+    if (texture.width() <= 0 || texture.height() <= 0) std::abort();
+    if (info.width != 0 && (info.width != texture.width() || info.height != texture.height())) std::abort();
+    if (texture.eight_bit() ? texture.rgba8.size() != texels * 4 : texture.linear.pixels.size() != texels * 4)
+      std::abort();
+    for (float v : texture.linear.pixels)
+      if (!std::isfinite(v) || v < 0) std::abort();
   } catch (const glint::ImageError&) {
   }
   return 0;

@@ -1,4 +1,5 @@
-// Textures of different sizes in one texture array, and coverage from colour alpha.
+// Textures of different sizes, many textures, 8-bit texels, the driver's limit, and coverage
+// from colour alpha.
 #include <unistd.h>
 
 #include <filesystem>
@@ -37,7 +38,7 @@ glm::ivec2 pixel_of(float x, float y, int w, int h, const Scene& s) {
   return {int((0.5f + 0.5f * x / half_w) * w), int((0.5f - 0.5f * y / half_h) * h)};
 }
 
-TEST(GlTextures, TexturesOfDifferentSizesShareTheArray) {
+TEST(GlTextures, TexturesOfDifferentSizesShareTheTexelBuffer) {
   test::ensure_gl_context();
   TempDir dir;
   // EXR keeps float texels exactly (no sRGB decode): 2x1 red|green and 1x2 blue/yellow.
@@ -104,6 +105,124 @@ TEST(GlTextures, ColourAlphaTimesOpacityIsTheCoverage) {
   test::Stats s = test::channel_stats(img, 0, [](int, int) { return true; });
   double sigma = e * std::sqrt(c * (1 - c) / (double(n) * s.count));
   EXPECT_NEAR(s.mean, (1 - c) * e, 4 * sigma);
+}
+
+// Texture memory follows each texture's own size: a 16384x1 and a 1x16384 texture once made
+// one 16384x16384 array of two layers (8 GiB), whose allocation failed and left every textured
+// surface black.
+TEST(GlTextures, LongThinTexturesTakeTheirOwnSize) {
+  test::ensure_gl_context();
+  TempDir dir;
+  save_image(dir.path / "row.png", solid_rows(16384, 1, std::vector<glm::vec4>(16384, {1, 0, 0, 1})));
+  save_image(dir.path / "column.png", solid_rows(1, 16384, std::vector<glm::vec4>(16384, {0, 1, 0, 1})));
+  Scene scene = test::empty_scene();
+  scene.base_dir = dir.path;
+  scene.render.max_bounces = 0;
+  scene.textures = {{.name = "row", .path = "row.png"}, {.name = "column", .path = "column.png"}};
+  scene.materials.push_back({.name = "r", .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = "row"});
+  scene.materials.push_back({.name = "c", .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = "column"});
+  scene.quads = {facing_quad("r", -2.2f, -0.2f), facing_quad("c", 0.2f, 2.2f)};
+  const int w = 64, h = 32;
+  GpuRenderer r;
+  r.sync(scene, w, h);
+  r.trace(1);
+  const Image img = r.read_accumulation();
+  const glm::ivec2 left = pixel_of(-1.2f, 0, w, h, scene), right = pixel_of(1.2f, 0, w, h, scene);
+  EXPECT_NEAR(img.at(left.x, left.y)[0], 1.0f, 1e-5);
+  EXPECT_NEAR(img.at(left.x, left.y)[1], 0.0f, 1e-5);
+  EXPECT_NEAR(img.at(right.x, right.y)[0], 0.0f, 1e-5);
+  EXPECT_NEAR(img.at(right.x, right.y)[1], 1.0f, 1e-5);
+}
+
+// More textures than a texture array has layers (2048 on llvmpipe, GL_MAX_ARRAY_TEXTURE_LAYERS):
+// 2100 texture entries, each its own layer, all naming one file (decoded once).
+TEST(GlTextures, MoreTexturesThanAnArrayHasLayers) {
+  test::ensure_gl_context();
+  TempDir dir;
+  save_image(dir.path / "grey.png", solid_rows(1, 1, {{0.5f, 0.5f, 0.5f, 1}}));
+  Scene scene = test::empty_scene();
+  scene.base_dir = dir.path;
+  scene.render.max_bounces = 0;
+  const int count = 2100;
+  for (int i = 0; i < count; ++i) {
+    const std::string n = std::to_string(i);
+    scene.textures.push_back({.name = "t" + n, .path = "grey.png"});
+    scene.materials.push_back({.name = "m" + n, .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = "t" + n});
+    Quad q = facing_quad("m" + n, -3, 3, 3);
+    for (auto& c : q.corners) c.z = 0.001f * float(i);  // the last is the nearest
+    scene.quads.push_back(q);
+  }
+  GpuRenderer r;
+  r.sync(scene, 4, 4);
+  r.trace(1);
+  const Image img = r.read_accumulation();
+  const float expected = load_image(dir.path / "grey.png", ColorEncoding::srgb).at(0, 0)[0];
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) EXPECT_NEAR(img.at(x, y)[1], expected, 1e-5f * expected) << x << " " << y;
+}
+
+// 8-bit textures stay 8-bit on the GPU and the shader decodes sRGB per tap: the same radiance
+// as the load-time decode (load_image) to within rounding, for dark, middle and bright bytes.
+TEST(GlTextures, EightBitTexelsGiveTheLoadersValues) {
+  test::ensure_gl_context();
+  TempDir dir;
+  Scene scene = test::empty_scene();
+  scene.base_dir = dir.path;
+  scene.render.max_bounces = 0;
+  const std::vector<int> bytes = {0, 1, 10, 50, 128, 200, 254, 255};
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    const std::string n = std::to_string(i);
+    const float v = float(bytes[i]) / 255.0f;  // written back as exactly this byte
+    save_image(dir.path / (n + ".png"), solid_rows(1, 1, {{v, v, v, 1}}));
+    scene.textures.push_back({.name = n, .path = n + ".png"});
+    scene.materials.push_back({.name = n, .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = n});
+    const float x0 = -8.0f + 2.0f * float(i);
+    scene.quads.push_back(facing_quad(n, x0 + 0.1f, x0 + 1.9f));
+  }
+  const int w = 256, h = 32;
+  GpuRenderer r;
+  r.sync(scene, w, h);
+  r.trace(1);
+  const Image img = r.read_accumulation();
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    const float expected = load_image(dir.path / (std::to_string(i) + ".png"), ColorEncoding::srgb).at(0, 0)[0];
+    const glm::ivec2 p = pixel_of(-7.0f + 2.0f * float(i), 0, w, h, scene);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(img.at(p.x, p.y)[c], expected, 1e-5f * expected + 1e-7f) << "byte " << bytes[i];
+  }
+}
+
+// What the driver cannot hold is refused with the limit, naming the texture; the renderer keeps
+// its previous state and renders a scene within the limit.
+TEST(GlTextures, TexturesBeyondTheDriversLimitAreRefused) {
+  test::ensure_gl_context();
+  TempDir dir;
+  save_image(dir.path / "small.png", solid_rows(8, 8, std::vector<glm::vec4>(64, {1, 1, 1, 1})));
+  save_image(dir.path / "large.png", solid_rows(16, 16, std::vector<glm::vec4>(256, {1, 1, 1, 1})));
+  Scene scene = test::empty_scene();
+  scene.base_dir = dir.path;
+  scene.render.max_bounces = 0;
+  scene.textures = {{.name = "t", .path = "small.png"}};
+  scene.materials.push_back({.name = "m", .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = "t"});
+  scene.quads = {facing_quad("m", -3, 3, 3)};
+  GpuRendererOptions options;
+  options.max_texture_buffer_texels = 100;
+  GpuRenderer r(options);
+  r.sync(scene, 4, 4);
+  Scene large = scene;
+  large.textures[0].path = "large.png";
+  try {
+    r.sync(large, 4, 4);
+    ADD_FAILURE() << "a texture of 256 texels was accepted with a limit of 100";
+  } catch (const ImageError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "textures[0].path: " + (dir.path / "large.png").string() +
+                  ": the textures need 256 8-bit texels, more than this OpenGL driver holds (100 "
+                  "texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
+  }
+  r.sync(scene, 4, 4);
+  r.trace(1);
+  EXPECT_NEAR(r.read_accumulation().at(1, 1)[0], 1.0f, 1e-5);
 }
 
 }  // namespace

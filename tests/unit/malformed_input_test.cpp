@@ -8,14 +8,17 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "tests/image_fixtures.h"
 #include "tests/temp_dir.h"
 
 namespace glint {
@@ -95,6 +98,25 @@ void write_assets(const fs::path& dir) {
   std::string png = read_bytes(dir / "wood.png");
   png[png.size() / 2] ^= 0x20;
   write_bytes(dir / "flip-wood.png", png);
+  // Whole headers and chunks, so that they pass the probe: only decoding finds the problems.
+  test::write_png_with_short_idat(dir / "short-idat.png");
+  test::write_exr_without_rgb(dir / "no-rgb.exr", pattern(4, 4));
+  // An offset table entry far past the end (the table follows the header, whose last attribute
+  // is screenWindowWidth, a float).
+  std::string exr = read_bytes(dir / "sky.exr");
+  exr.at(exr.find(std::string("screenWindowWidth\0float\0", 24)) + 24 + 4 + 4 + 1 + 3) = '\x7f';
+  write_bytes(dir / "far-offset.exr", exr);
+  // Texels no light or colour can have, at (3, 2) green, (0, 0) red, (1, 3) alpha.
+  for (const auto& [name, x, y, c, value] :
+       {std::tuple{"nan.exr", 3, 2, 1, std::nanf("")}, std::tuple{"negative.exr", 0, 0, 0, -5.0f},
+        std::tuple{"inf.exr", 1, 3, 3, INFINITY}}) {
+    Image image = pattern(4, 4);
+    image.at(x, y)[c] = value;
+    save_image(dir / name, image);
+  }
+  // Decompression bombs: headers of huge images over a few bytes of data.
+  test::write_png_claiming(dir / "bomb.png", 16384, 16384);
+  write_bytes(dir / "bomb.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n" + std::string(64, '\x7f'));
 }
 
 TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
@@ -266,6 +288,37 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"1 MB of a bad literal", [] { return edit("\"radius\": 0.5", "\"radius\": t" + std::string(1 << 20, 'x')); },
        "invalid JSON: parse error at line 6, column 66: syntax error while parsing value - "
        "invalid literal; last read: '\"radius\": tx'"},
+      {"NUL in a texture path", [] { return edit("\"wood.png\"", "\"wood.png\\u0000.txt\""); },
+       "textures[0].path: contains a NUL character (\\u0000), which no file name can hold"},
+      {"NUL in the environment path", [] { return edit("\"sky.hdr\"", "\"sky.hdr\\u0000\""); },
+       "environment.texture: contains a NUL character (\\u0000), which no file name can hold"},
+      // Images that pass the header probe: decoded on load, so that the error names the project
+      // and the JSON path (not only at render time, without either).
+      {"PNG texture with a short IDAT", [] { return edit("wood.png", "short-idat.png"); },
+       "textures[0].path: cannot read image: {dir}/short-idat.png: cannot decode image (bad huffman code)"},
+      {"EXR texture without RGB", [] { return edit("wood.png", "no-rgb.exr"); },
+       "textures[0].path: cannot read image: {dir}/no-rgb.exr: OpenEXR file has neither R, G, B "
+       "nor a single grey channel"},
+      {"EXR environment with an offset past the end", [] { return edit("sky.hdr", "far-offset.exr"); },
+       "environment.texture: cannot read image: {dir}/far-offset.exr: cannot decode OpenEXR data "
+       "(Invalid offset value in DecodeEXRImage.)"},
+      {"NaN in the environment", [] { return edit("sky.hdr", "nan.exr"); },
+       "environment.texture: cannot read image: {dir}/nan.exr: texel (3, 2) channel G is nan "
+       "(texels must be finite and not negative)"},
+      {"negative environment", [] { return edit("sky.hdr", "negative.exr"); },
+       "environment.texture: cannot read image: {dir}/negative.exr: texel (0, 0) channel R is -5 "
+       "(texels must be finite and not negative)"},
+      {"infinite texture alpha", [] { return edit("wood.png", "inf.exr"); },
+       "textures[0].path: cannot read image: {dir}/inf.exr: texel (1, 3) channel A is inf "
+       "(texels must be finite and not negative)"},
+      // Memory: estimated from the headers, refused before anything is decoded.
+      {"16384x16384 PNG texture", [] { return edit("wood.png", "bomb.png"); },
+       "textures[0].path: {dir}/bomb.png: a 16384x16384 8-bit texture takes 1.0 GiB (4 bytes per "
+       "texel), which brings the textures and environment to 1.0 GiB; the limit is 768.0 MiB"},
+      {"16384x8192 HDR environment", [] { return edit("sky.hdr", "bomb.hdr"); },
+       "environment.texture: {dir}/bomb.hdr: a 16384x8192 float environment takes 2.5 GiB (20 "
+       "bytes per texel), which brings the textures and environment to 2.5 GiB; the limit is "
+       "768.0 MiB"},
       {"texture path with invalid UTF-8 escape", [] { return edit("wood.png", "w\\ud800.png"); },
        "invalid JSON: parse error at line 4, column 49: syntax error while parsing value - "
        "invalid string: surrogate U+D800..U+DBFF must be followed by U+DC00..U+DFFF; last read: "
