@@ -3,9 +3,13 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
 #include <string>
 #include <utility>
 
+#include "renderer/float_limits.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
 #include "renderer/texture_cache.h"
@@ -13,6 +17,31 @@
 namespace glint {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// The shader's environment radiance is a texel times environment.intensity, in float: each is
+// within its own limit, but the product must be too (float_limits.h, kMaxRadiance).
+void check_environment_radiance(const Scene& scene, const TextureImage& texture,
+                                std::vector<ProjectError>& problems) {
+  float brightest = texture.eight_bit() ? 1.0f : 0.0f;
+  const std::vector<float>& pixels = texture.linear.pixels;
+  for (size_t i = 0; i < pixels.size(); ++i)
+    if (i % 4 != 3) brightest = std::max(brightest, pixels[i]);
+  const float intensity = scene.environment.intensity;
+  const double product = double(brightest) * intensity;  // in double: finite for the message
+  char product_text[32];
+  std::snprintf(product_text, sizeof product_text, "%.3g", product);
+  if (std::isfinite(intensity) && !(product <= kMaxRadiance))
+    problems.emplace_back("", "environment.intensity",
+                          "times the brightest texel of the environment (" +
+                              json_fields::float_text(brightest) + ") gives a radiance of " +
+                              product_text + ", above the limit of " +
+                              json_fields::float_text(kMaxRadiance) +
+                              " (the renderer's 32-bit floats would overflow)");
+}
+
+}  // namespace
 
 std::vector<ProjectError> check_scene_images(const Scene& scene) {
   struct Named {
@@ -68,7 +97,8 @@ std::vector<ProjectError> check_scene_images(const Scene& scene) {
   // channel or a bad texel is found now, not when the scene is first rendered.
   for (const Named& image : images) {
     try {
-      load_texture_cached(image.file);
+      const std::shared_ptr<const TextureImage> texture = load_texture_cached(image.file);
+      if (image.environment) check_environment_radiance(scene, *texture, problems);
     } catch (const std::exception& e) {
       add(image, std::string("cannot read image: ") + e.what());
     }

@@ -106,10 +106,11 @@ void write_assets(const fs::path& dir) {
   std::string exr = read_bytes(dir / "sky.exr");
   exr.at(exr.find(std::string("screenWindowWidth\0float\0", 24)) + 24 + 4 + 4 + 1 + 3) = '\x7f';
   write_bytes(dir / "far-offset.exr", exr);
-  // Texels no light or colour can have, at (3, 2) green, (0, 0) red, (1, 3) alpha.
+  // Texels no light or colour can have, at (3, 2) green, (0, 0) red, (1, 3) alpha; a texel of
+  // 1e30 (blue at (2, 1)), finite but too bright with an intensity of 1e10.
   for (const auto& [name, x, y, c, value] :
        {std::tuple{"nan.exr", 3, 2, 1, std::nanf("")}, std::tuple{"negative.exr", 0, 0, 0, -5.0f},
-        std::tuple{"inf.exr", 1, 3, 3, INFINITY}}) {
+        std::tuple{"inf.exr", 1, 3, 3, INFINITY}, std::tuple{"bright.exr", 2, 1, 2, 1e30f}}) {
     Image image = pattern(4, 4);
     image.at(x, y)[c] = value;
     save_image(dir / name, image);
@@ -311,6 +312,10 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
       {"infinite texture alpha", [] { return edit("wood.png", "inf.exr"); },
        "textures[0].path: cannot read image: {dir}/inf.exr: texel (1, 3) channel A is inf "
        "(texels must be finite and not negative)"},
+      {"environment texel times intensity past the radiance limit",
+       [] { return edit("\"sky.hdr\"", "\"bright.exr\", \"intensity\": 1e10"); },
+       "environment.intensity: times the brightest texel of the environment (1e+30) gives a "
+       "radiance of 1e+40, above the limit of 1e+20 (the renderer's 32-bit floats would overflow)"},
       // Memory: estimated from the headers, refused before anything is decoded.
       {"16384x16384 PNG texture", [] { return edit("wood.png", "bomb.png"); },
        "textures[0].path: {dir}/bomb.png: a 16384x16384 8-bit texture takes 1.0 GiB (4 bytes per "
