@@ -7,6 +7,11 @@
 // of the mean that float32 could not hold (Kahan), a unused. The pass reads the previous
 // accumulation and compensation and writes the next ones (ping-pong); the exact sample count
 // lives on the CPU.
+// Next-event estimation samples emitting shapes and an environment map; with neither there is
+// nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
+#if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
+#define GLINT_NO_LIGHT_SAMPLING
+#endif
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/sobol.glsl"
@@ -301,9 +306,11 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
     GpuMaterial gm = materials[hit.material];
     vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
     float coverage = gm.params.z * color_tex.a;
+#if !defined(GLINT_NO_EMITTERS)
     if (target >= 0 && hit.light == target) {
       return transmittance * coverage * material_emission(gm, hit.uv);
     }
+#endif
     vec3 n = dot(hit.normal, wi) <= 0.0 ? hit.normal : -hit.normal;  // towards the ray's origin
     transmittance *= straight_transmittance(gm, color_tex, hit.uv, coverage, dot(n, -wi));
     if (max_component(transmittance) <= 0.0) break;
@@ -337,6 +344,7 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
   float pdf;
   int target;
   vec3 origin = above;
+#if !defined(GLINT_NO_ENV_TEXTURE)
   if (u_pick < u_env_select) {
     EnvironmentSample es = sample_environment(u, u_env_rotation);
     if (!es.valid || !(es.pdf > 0.0)) return vec3(0.0);
@@ -344,7 +352,13 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
     pdf = u_env_select * es.pdf;
     target = -1;
     if (dot(wi, n) <= 0.0) origin = offset_surface_point(p, -n, error_scale);
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_EMITTERS) && !defined(GLINT_NO_ENV_TEXTURE)
+  else
+#endif
+#if !defined(GLINT_NO_EMITTERS)
+  {
     target = pick_light((u_pick - u_env_select) / (1.0 - u_env_select));
     LightSample ls = sample_light(target, above, u);
     if (m.type == MATERIAL_TRANSPARENT && ls.valid && dot(ls.wi, n) <= 0.0) {
@@ -357,6 +371,7 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
     wi = ls.wi;
     pdf = (1.0 - u_env_select) * lights[target].select.x * ls.pdf;
   }
+#endif
   vec3 f = eval_bsdf(m, n, wo, wi);
   if (max_component(f) <= 0.0) return vec3(0.0);
   vec3 li = shadow_ray(origin, wi, target);
@@ -379,9 +394,11 @@ vec3 trace_path(Ray ray) {
     SceneHit hit = intersect_scene(ray);
     if (hit.material < 0) {
       float w = 1.0;
+#if !defined(GLINT_NO_ENV_TEXTURE)  // without an environment map u_env_select is 0
       if (!last_delta && u_env_select > 0.0) {
         w = power_heuristic(last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
       }
+#endif
       radiance += throughput * environment(ray.direction) * w;
       break;
     }
@@ -411,9 +428,11 @@ vec3 trace_path(Ray ray) {
     if (bounces >= u_max_bounces) break;
     SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
     bool delta = is_delta_material(m);
+#if !defined(GLINT_NO_LIGHT_SAMPLING)
     if (light_sampling && !delta) {
       radiance += throughput * direct_light(m, p, n, wo, hit.error_scale, bounces);
     }
+#endif
     float u_lobe = sample_1d(bsdf_dimension(bounces));
     vec2 u = sample_2d(bsdf_dimension(bounces));
     BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
