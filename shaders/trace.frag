@@ -215,7 +215,11 @@ SceneHit intersect_scene(Ray ray) {
   PrimitiveHit closest = closest_primitive(ray);
   if (closest.ref < 0) return hit;
   hit.t = closest.t;
-  if (closest.ref >= u_sphere_count) {
+#if !defined(GLINT_NO_QUADS)
+#if !defined(GLINT_NO_SPHERES)
+  if (closest.ref >= u_sphere_count)
+#endif
+  {
     GpuQuad q = quads[closest.ref - u_sphere_count];
     // The quad's nearest hit again, for its texture coordinates and point (the same t: the
     // test's result does not depend on tmax beyond it).
@@ -227,7 +231,13 @@ SceneHit intersect_scene(Ray ray) {
     hit.error_scale = quad_error_scale(q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz);
     hit.material = q.material.x;
     hit.light = q.material.y;
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_QUADS) && !defined(GLINT_NO_SPHERES)
+  else
+#endif
+#if !defined(GLINT_NO_SPHERES)
+  {
     GpuSphere sphere = spheres[closest.ref];
     vec4 s = sphere.center_radius;
     hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
@@ -237,6 +247,7 @@ SceneHit intersect_scene(Ray ray) {
     hit.material = sphere.material.x;
     hit.light = sphere.material.y;
   }
+#endif
   return hit;
 }
 
@@ -272,14 +283,19 @@ vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float cover
 // The solid-angle pdf with which next-event estimation at p picks the point y of light i.
 float light_pdf(int i, vec3 p, vec3 y) {
   GpuLight l = lights[i];
-  float shape_pdf;
+  float shape_pdf = 0.0;
+#if !defined(GLINT_NO_SPHERES)
   if (l.shape.x == 0) {
     vec4 s = spheres[l.shape.y].center_radius;
     shape_pdf = sphere_light_pdf(p, s.xyz, s.w, y);
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x != 0) {
     GpuQuad q = quads[l.shape.y];
     shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
   }
+#endif
   return (1.0 - u_env_select) * l.select.x * shape_pdf;
 }
 
@@ -322,12 +338,19 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
 // A light sample seen from `origin`: the point the shadow ray actually starts from.
 LightSample sample_light(int i, vec3 origin, vec2 u) {
   GpuLight l = lights[i];
-  if (l.shape.x == 0) {
+#if !defined(GLINT_NO_SPHERES) || defined(GLINT_NO_QUADS)  // (with neither shape, never called)
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x == 0)
+#endif
+  {
     vec4 s = spheres[l.shape.y].center_radius;
     return sample_sphere_light(origin, s.xyz, s.w, u);
   }
+#endif
+#if !defined(GLINT_NO_QUADS)
   GpuQuad q = quads[l.shape.y];
   return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+#endif
 }
 
 // One light sample at a non-delta vertex, weighted against BSDF sampling (power heuristic;
