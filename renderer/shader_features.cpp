@@ -69,6 +69,7 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.has_spheres, needed.has_spheres) && ok(program.has_quads, needed.has_quads) &&
          ok(program.loop_traversal, needed.loop_traversal) &&
          ok(program.bvh_traversal, needed.bvh_traversal) &&
+         ok(program.pcg_sampler, needed.pcg_sampler) && ok(program.sobol_sampler, needed.sobol_sampler) &&
          (needed.material_types & ~program.material_types) == 0;
 }
 
@@ -90,6 +91,8 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.bvh_traversal, "GLINT_NO_BVH");
   define(f.has_spheres, "GLINT_NO_SPHERES");
   define(f.has_quads, "GLINT_NO_QUADS");
+  define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
+  define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
   return out;
 }
 

@@ -31,6 +31,10 @@ struct ShaderFeatures {
   // renderer keeps the one it uses (renderer/bvh.h, use_bvh). With both, u_use_bvh chooses.
   bool loop_traversal = true;
   bool bvh_traversal = true;
+  // The sampler of the render options (RenderOptions::sampler), kept like the traversals: the
+  // scene keeps both, the renderer the one it uses; with one, u_sobol is a constant.
+  bool pcg_sampler = true;
+  bool sobol_sampler = true;
 
   bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
   bool operator==(const ShaderFeatures&) const = default;

@@ -93,7 +93,15 @@ uniform int u_light_count;
 uniform float u_env_select;
 uniform bool u_russian_roulette;
 uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
-uniform bool u_sobol;   // Owen-scrambled Sobol points instead of independent PCG numbers
+// Owen-scrambled Sobol points instead of independent PCG numbers; a constant in programs for
+// one sampler (renderer/shader_features.h), so that the other one's code is left out.
+#if defined(GLINT_NO_PCG_SAMPLER)
+const bool u_sobol = true;
+#elif defined(GLINT_NO_SOBOL_SAMPLER)
+const bool u_sobol = false;
+#else
+uniform bool u_sobol;
+#endif
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_compensation;

@@ -23,11 +23,18 @@ namespace {
 constexpr double kRelativeTolerance = 1e-4;
 
 
-Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised) {
+Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised,
+             SamplerKind sampler = RenderOptions{}.sampler) {
   GpuRendererOptions options;
   options.force_generic_shader = generic;
   GpuRenderer r(options);
+  RenderOptions estimator;
+  estimator.sampler = sampler;
+  r.set_options(estimator);
   r.sync(scene, w, h);
+  // The program keeps only the sampler in use.
+  EXPECT_NE(shader_defines(r.features()).find(sampler == SamplerKind::sobol ? "GLINT_NO_PCG_SAMPLER" : "GLINT_NO_SOBOL_SAMPLER"),
+            std::string::npos);
   if (!generic) r.prepare_specialised_program();
   bool specialised = true;
   for (int i = 0; i < passes; ++i) {
@@ -95,11 +102,11 @@ TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
     s.spheres.clear();
     cases.push_back({"quads only", "GLINT_NO_SPHERES", s});
   }
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
+  for (const Case& c : cases) for (SamplerKind sampler : {SamplerKind::pcg, SamplerKind::sobol}) {
+    SCOPED_TRACE(std::string(c.name) + (sampler == SamplerKind::sobol ? ", sobol" : ", pcg"));
     bool specialised = false;
-    Image special = render(c.scene, 24, 24, false, 2, &specialised);
-    Image generic = render(c.scene, 24, 24, true, 2, nullptr);
+    Image special = render(c.scene, 24, 24, false, 2, &specialised, sampler);
+    Image generic = render(c.scene, 24, 24, true, 2, nullptr, sampler);
     EXPECT_TRUE(specialised);
     EXPECT_NE(shader_defines(scene_features(c.scene)).find(c.defines), std::string::npos);
     double mean = 0;

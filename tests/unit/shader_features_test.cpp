@@ -144,6 +144,19 @@ TEST(ShaderFeatures, ShapeKinds) {
   EXPECT_TRUE(covers(generic_features(), quads_only));
 }
 
+TEST(ShaderFeatures, SamplerDefinesAndCover) {
+  ShaderFeatures pcg = generic_features(), sobol = generic_features();
+  pcg.sobol_sampler = false;
+  sobol.pcg_sampler = false;
+  EXPECT_EQ(shader_defines(pcg), "#define GLINT_NO_SOBOL_SAMPLER\n");
+  EXPECT_EQ(shader_defines(sobol), "#define GLINT_NO_PCG_SAMPLER\n");
+  EXPECT_TRUE(covers(generic_features(), pcg));
+  EXPECT_FALSE(covers(pcg, sobol));
+  EXPECT_FALSE(covers(sobol, pcg));
+  ShaderFeatures scene = scene_features(Scene{});
+  EXPECT_TRUE(scene.pcg_sampler && scene.sobol_sampler);  // the render options decide
+}
+
 TEST(ShaderFeatures, TraversalDefinesAndCover) {
   ShaderFeatures loop = generic_features(), bvh = generic_features();
   loop.bvh_traversal = false;
