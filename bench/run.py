@@ -406,7 +406,9 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
     if tput:
         L.append("Mitsuba (vectorised LLVM on the CPU) traces, against Glint's fragment shader on "
                  "llvmpipe: " + "; ".join(tput) + ". The equal-time ratio is the product of the "
-                 "two; where it is above 1, most of it is throughput on this CPU.\n")
+                 "two; where it is above 1, most of it is throughput on this CPU. How far Glint's "
+                 "shader is from a bare path tracer on the same driver, and where its time goes: "
+                 "bench/THROUGHPUT.md.\n")
     if refused:
         L.append("Not exported (Mitsuba would not model them identically):\n")
         for name, reasons in refused:

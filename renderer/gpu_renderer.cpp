@@ -165,6 +165,8 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   features_.thin_lens = scene.camera.aperture_radius > 0;
   features_.loop_traversal = !use_bvh_;
   features_.bvh_traversal = use_bvh_;
+  features_.sobol_sampler = options_.sampler == SamplerKind::sobol;
+  features_.pcg_sampler = !features_.sobol_sampler;
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;

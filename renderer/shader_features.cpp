@@ -54,6 +54,8 @@ ShaderFeatures scene_features(const Scene& scene) {
       f.has_coverage = true;
   }
   f.env_textured = !scene.environment.texture.empty();
+  f.has_spheres = !scene.spheres.empty();
+  f.has_quads = !scene.quads.empty();
   f.thin_lens = scene.camera.aperture_radius > 0;
   return f;
 }
@@ -64,8 +66,10 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.has_textures, needed.has_textures) &&
          ok(program.env_textured, needed.env_textured) && ok(program.thin_lens, needed.thin_lens) &&
          ok(program.has_coverage, needed.has_coverage) &&
+         ok(program.has_spheres, needed.has_spheres) && ok(program.has_quads, needed.has_quads) &&
          ok(program.loop_traversal, needed.loop_traversal) &&
          ok(program.bvh_traversal, needed.bvh_traversal) &&
+         ok(program.pcg_sampler, needed.pcg_sampler) && ok(program.sobol_sampler, needed.sobol_sampler) &&
          (needed.material_types & ~program.material_types) == 0;
 }
 
@@ -85,6 +89,10 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.uses(MaterialType::transparent), "GLINT_NO_TRANSPARENT");
   define(f.loop_traversal, "GLINT_NO_LOOP");
   define(f.bvh_traversal, "GLINT_NO_BVH");
+  define(f.has_spheres, "GLINT_NO_SPHERES");
+  define(f.has_quads, "GLINT_NO_QUADS");
+  define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
+  define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
   return out;
 }
 

@@ -4,6 +4,10 @@
 // build of the shader library (renderer/shader_lib.h), which defines none, keeps every branch.
 // Only features whose removal makes the shader cheaper are listed; removing one never changes
 // the random-number sequence, so generic and specialised programs render the same image.
+// On Mesa's llvmpipe a branch that no pixel takes still costs its full time: the shader runs
+// as SIMD vectors of pixels, and an `if` only masks lanes (gallivm's lp_bld_nir_soa.c pushes
+// an execution mask and runs both sides; loops alone branch). So code that a uniform switches
+// off is compiled out wherever the scene allows it (bench/THROUGHPUT.md measures it).
 #pragma once
 
 #include <cstdint>
@@ -19,12 +23,18 @@ struct ShaderFeatures {
   bool env_textured = true;   // the environment is an image
   bool thin_lens = true;      // aperture_radius > 0
   bool has_coverage = true;   // a used material has opacity < 1 or a colour texture with alpha
+  bool has_spheres = true;    // the scene has a sphere
+  bool has_quads = true;      // the scene has a quad
   uint32_t material_types = 0xF;  // bit (1 << int(MaterialType)) per type used by a primitive
   // Closest hits by the loop over all shapes, by the BVH (shaders/lib/bvh.glsl). The scene alone
   // does not decide (the render options may force one): scene_features keeps both, and the
   // renderer keeps the one it uses (renderer/bvh.h, use_bvh). With both, u_use_bvh chooses.
   bool loop_traversal = true;
   bool bvh_traversal = true;
+  // The sampler of the render options (RenderOptions::sampler), kept like the traversals: the
+  // scene keeps both, the renderer the one it uses; with one, u_sobol is a constant.
+  bool pcg_sampler = true;
+  bool sobol_sampler = true;
 
   bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
   bool operator==(const ShaderFeatures&) const = default;

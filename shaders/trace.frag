@@ -7,6 +7,11 @@
 // of the mean that float32 could not hold (Kahan), a unused. The pass reads the previous
 // accumulation and compensation and writes the next ones (ping-pong); the exact sample count
 // lives on the CPU.
+// Next-event estimation samples emitting shapes and an environment map; with neither there is
+// nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
+#if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
+#define GLINT_NO_LIGHT_SAMPLING
+#endif
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/sobol.glsl"
@@ -88,7 +93,15 @@ uniform int u_light_count;
 uniform float u_env_select;
 uniform bool u_russian_roulette;
 uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
-uniform bool u_sobol;   // Owen-scrambled Sobol points instead of independent PCG numbers
+// Owen-scrambled Sobol points instead of independent PCG numbers; a constant in programs for
+// one sampler (renderer/shader_features.h), so that the other one's code is left out.
+#if defined(GLINT_NO_PCG_SAMPLER)
+const bool u_sobol = true;
+#elif defined(GLINT_NO_SOBOL_SAMPLER)
+const bool u_sobol = false;
+#else
+uniform bool u_sobol;
+#endif
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_compensation;
@@ -210,7 +223,11 @@ SceneHit intersect_scene(Ray ray) {
   PrimitiveHit closest = closest_primitive(ray);
   if (closest.ref < 0) return hit;
   hit.t = closest.t;
-  if (closest.ref >= u_sphere_count) {
+#if !defined(GLINT_NO_QUADS)
+#if !defined(GLINT_NO_SPHERES)
+  if (closest.ref >= u_sphere_count)
+#endif
+  {
     GpuQuad q = quads[closest.ref - u_sphere_count];
     // The quad's nearest hit again, for its texture coordinates and point (the same t: the
     // test's result does not depend on tmax beyond it).
@@ -222,7 +239,13 @@ SceneHit intersect_scene(Ray ray) {
     hit.error_scale = quad_error_scale(q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz);
     hit.material = q.material.x;
     hit.light = q.material.y;
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_QUADS) && !defined(GLINT_NO_SPHERES)
+  else
+#endif
+#if !defined(GLINT_NO_SPHERES)
+  {
     GpuSphere sphere = spheres[closest.ref];
     vec4 s = sphere.center_radius;
     hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
@@ -232,6 +255,7 @@ SceneHit intersect_scene(Ray ray) {
     hit.material = sphere.material.x;
     hit.light = sphere.material.y;
   }
+#endif
   return hit;
 }
 
@@ -267,14 +291,19 @@ vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float cover
 // The solid-angle pdf with which next-event estimation at p picks the point y of light i.
 float light_pdf(int i, vec3 p, vec3 y) {
   GpuLight l = lights[i];
-  float shape_pdf;
+  float shape_pdf = 0.0;
+#if !defined(GLINT_NO_SPHERES)
   if (l.shape.x == 0) {
     vec4 s = spheres[l.shape.y].center_radius;
     shape_pdf = sphere_light_pdf(p, s.xyz, s.w, y);
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x != 0) {
     GpuQuad q = quads[l.shape.y];
     shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
   }
+#endif
   return (1.0 - u_env_select) * l.select.x * shape_pdf;
 }
 
@@ -301,9 +330,11 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
     GpuMaterial gm = materials[hit.material];
     vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
     float coverage = gm.params.z * color_tex.a;
+#if !defined(GLINT_NO_EMITTERS)
     if (target >= 0 && hit.light == target) {
       return transmittance * coverage * material_emission(gm, hit.uv);
     }
+#endif
     vec3 n = dot(hit.normal, wi) <= 0.0 ? hit.normal : -hit.normal;  // towards the ray's origin
     transmittance *= straight_transmittance(gm, color_tex, hit.uv, coverage, dot(n, -wi));
     if (max_component(transmittance) <= 0.0) break;
@@ -315,12 +346,19 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
 // A light sample seen from `origin`: the point the shadow ray actually starts from.
 LightSample sample_light(int i, vec3 origin, vec2 u) {
   GpuLight l = lights[i];
-  if (l.shape.x == 0) {
+#if !defined(GLINT_NO_SPHERES) || defined(GLINT_NO_QUADS)  // (with neither shape, never called)
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x == 0)
+#endif
+  {
     vec4 s = spheres[l.shape.y].center_radius;
     return sample_sphere_light(origin, s.xyz, s.w, u);
   }
+#endif
+#if !defined(GLINT_NO_QUADS)
   GpuQuad q = quads[l.shape.y];
   return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+#endif
 }
 
 // One light sample at a non-delta vertex, weighted against BSDF sampling (power heuristic;
@@ -337,6 +375,7 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
   float pdf;
   int target;
   vec3 origin = above;
+#if !defined(GLINT_NO_ENV_TEXTURE)
   if (u_pick < u_env_select) {
     EnvironmentSample es = sample_environment(u, u_env_rotation);
     if (!es.valid || !(es.pdf > 0.0)) return vec3(0.0);
@@ -344,7 +383,13 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
     pdf = u_env_select * es.pdf;
     target = -1;
     if (dot(wi, n) <= 0.0) origin = offset_surface_point(p, -n, error_scale);
-  } else {
+  }
+#endif
+#if !defined(GLINT_NO_EMITTERS) && !defined(GLINT_NO_ENV_TEXTURE)
+  else
+#endif
+#if !defined(GLINT_NO_EMITTERS)
+  {
     target = pick_light((u_pick - u_env_select) / (1.0 - u_env_select));
     LightSample ls = sample_light(target, above, u);
     if (m.type == MATERIAL_TRANSPARENT && ls.valid && dot(ls.wi, n) <= 0.0) {
@@ -357,6 +402,7 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
     wi = ls.wi;
     pdf = (1.0 - u_env_select) * lights[target].select.x * ls.pdf;
   }
+#endif
   vec3 f = eval_bsdf(m, n, wo, wi);
   if (max_component(f) <= 0.0) return vec3(0.0);
   vec3 li = shadow_ray(origin, wi, target);
@@ -379,9 +425,11 @@ vec3 trace_path(Ray ray) {
     SceneHit hit = intersect_scene(ray);
     if (hit.material < 0) {
       float w = 1.0;
+#if !defined(GLINT_NO_ENV_TEXTURE)  // without an environment map u_env_select is 0
       if (!last_delta && u_env_select > 0.0) {
         w = power_heuristic(last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
       }
+#endif
       radiance += throughput * environment(ray.direction) * w;
       break;
     }
@@ -411,9 +459,11 @@ vec3 trace_path(Ray ray) {
     if (bounces >= u_max_bounces) break;
     SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
     bool delta = is_delta_material(m);
+#if !defined(GLINT_NO_LIGHT_SAMPLING)
     if (light_sampling && !delta) {
       radiance += throughput * direct_light(m, p, n, wo, hit.error_scale, bounces);
     }
+#endif
     float u_lobe = sample_1d(bsdf_dimension(bounces));
     vec2 u = sample_2d(bsdf_dimension(bounces));
     BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);

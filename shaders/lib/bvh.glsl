@@ -46,15 +46,25 @@ struct PrimitiveHit {
 // also accepting t == best for a lower reference: for those it tests against the next float up.
 float next_float_up(float t) { return uintBitsToFloat(floatBitsToUint(t) + 1u); }
 
+// A trace program for a scene without quads (GLINT_NO_QUADS) or without spheres
+// (GLINT_NO_SPHERES) leaves out that shape's code: on llvmpipe an untaken branch still runs
+// (renderer/shader_features.h).
 float scene_primitive_hit(int ref, Ray ray, float tmax) {
   int spheres = scene_sphere_count();
+#if defined(GLINT_NO_QUADS)
+  return scene_sphere_hit(ref, ray, tmax);
+#elif defined(GLINT_NO_SPHERES)
+  return scene_quad_hit(ref - spheres, ray, tmax);
+#else
   if (ref < spheres) return scene_sphere_hit(ref, ray, tmax);
   return scene_quad_hit(ref - spheres, ray, tmax);
+#endif
 }
 
 PrimitiveHit closest_hit_loop(Ray ray, float tmax) {
   PrimitiveHit best = PrimitiveHit(tmax, -1, 0, true);
   int spheres = scene_sphere_count();
+#if !defined(GLINT_NO_SPHERES)
   for (int i = 0; i < spheres; ++i) {
     float t = scene_sphere_hit(i, ray, best.t);
     if (t != NO_HIT) {
@@ -62,6 +72,8 @@ PrimitiveHit closest_hit_loop(Ray ray, float tmax) {
       best.ref = i;
     }
   }
+#endif
+#if !defined(GLINT_NO_QUADS)
   int quads = scene_quad_count();
   for (int i = 0; i < quads; ++i) {
     float t = scene_quad_hit(i, ray, best.t);
@@ -70,6 +82,7 @@ PrimitiveHit closest_hit_loop(Ray ray, float tmax) {
       best.ref = spheres + i;
     }
   }
+#endif
   return best;
 }
 

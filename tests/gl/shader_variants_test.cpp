@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "renderer/project_file.h"
 #include "tests/gl/gl_test_support.h"
@@ -22,11 +23,18 @@ namespace {
 constexpr double kRelativeTolerance = 1e-4;
 
 
-Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised) {
+Image render(const Scene& scene, int w, int h, bool generic, int passes, bool* all_specialised,
+             SamplerKind sampler = RenderOptions{}.sampler) {
   GpuRendererOptions options;
   options.force_generic_shader = generic;
   GpuRenderer r(options);
+  RenderOptions estimator;
+  estimator.sampler = sampler;
+  r.set_options(estimator);
   r.sync(scene, w, h);
+  // The program keeps only the sampler in use.
+  EXPECT_NE(shader_defines(r.features()).find(sampler == SamplerKind::sobol ? "GLINT_NO_PCG_SAMPLER" : "GLINT_NO_SOBOL_SAMPLER"),
+            std::string::npos);
   if (!generic) r.prepare_specialised_program();
   bool specialised = true;
   for (int i = 0; i < passes; ++i) {
@@ -65,6 +73,47 @@ TEST(GlShaderVariants, EveryProjectRendersTheSameSpecialisedAndGeneric) {
     ++count;
   }
   EXPECT_GE(count, 6);
+}
+
+// Scenes that no example project is: each leaves out code the projects keep (next-event
+// estimation entirely, the environment branch of it, one shape kind).
+TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
+  test::ensure_gl_context();
+  struct Case {
+    const char* name;
+    const char* defines;  // that the specialised program must have
+    Scene scene;
+  };
+  std::vector<Case> cases;
+  Scene base = load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint");
+  base.render.seed = 11;
+  {
+    Scene s = base;  // lit only by the constant environment: nothing for shadow rays to aim at
+    for (Material& m : s.materials) m.emission = glm::vec3(0);
+    s.environment.color = glm::vec3(0.4f, 0.45f, 0.5f);
+    s.environment.intensity = 1;
+    cases.push_back({"no emitters", "GLINT_NO_EMITTERS", s});
+    s.quads.clear();
+    s.spheres.push_back({.name = "floor", .center = {0, -1000.5f, 0}, .radius = 1000, .material = s.spheres[0].material});
+    cases.push_back({"spheres only", "GLINT_NO_QUADS", s});
+  }
+  {
+    Scene s = base;  // the quad light, walls and no spheres
+    s.spheres.clear();
+    cases.push_back({"quads only", "GLINT_NO_SPHERES", s});
+  }
+  for (const Case& c : cases) for (SamplerKind sampler : {SamplerKind::pcg, SamplerKind::sobol}) {
+    SCOPED_TRACE(std::string(c.name) + (sampler == SamplerKind::sobol ? ", sobol" : ", pcg"));
+    bool specialised = false;
+    Image special = render(c.scene, 24, 24, false, 2, &specialised, sampler);
+    Image generic = render(c.scene, 24, 24, true, 2, nullptr, sampler);
+    EXPECT_TRUE(specialised);
+    EXPECT_NE(shader_defines(scene_features(c.scene)).find(c.defines), std::string::npos);
+    double mean = 0;
+    for (float v : special.pixels) mean += v;
+    EXPECT_GT(mean, 0.0) << "the scene is lit";
+    EXPECT_LE(test::max_relative_difference(special, generic), kRelativeTolerance);
+  }
 }
 
 // Traces single-sample passes until the specialised program runs (or 30 s pass); returns how

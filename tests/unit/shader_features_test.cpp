@@ -29,12 +29,14 @@ TEST(ShaderFeatures, EmptySceneNeedsNothing) {
   Scene s;
   s.camera.aperture_radius = 0;
   ShaderFeatures f = scene_features(s);
-  EXPECT_FALSE(f.has_emitters || f.has_textures || f.env_textured || f.thin_lens || f.has_coverage);
+  EXPECT_FALSE(f.has_emitters || f.has_textures || f.env_textured || f.thin_lens || f.has_coverage ||
+               f.has_spheres || f.has_quads);
   EXPECT_EQ(f.material_types, 0u);
   EXPECT_EQ(shader_defines(f),
             "#define GLINT_NO_EMITTERS\n#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n"
             "#define GLINT_NO_THIN_LENS\n#define GLINT_NO_COVERAGE\n#define GLINT_NO_MATTE\n"
-            "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n");
+            "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n"
+            "#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n");
 }
 
 TEST(ShaderFeatures, CornellBox) {
@@ -44,6 +46,7 @@ TEST(ShaderFeatures, CornellBox) {
   EXPECT_FALSE(f.env_textured);
   EXPECT_FALSE(f.thin_lens);
   EXPECT_FALSE(f.has_coverage);
+  EXPECT_TRUE(f.has_spheres && f.has_quads);
   EXPECT_EQ(f.material_types, bit(MaterialType::matte) | bit(MaterialType::reflective) |
                                   bit(MaterialType::glossy));
   EXPECT_EQ(shader_defines(f),
@@ -120,6 +123,38 @@ TEST(ShaderFeatures, CoversMeansEveryNeededFeatureIsCompiledIn) {
   ShaderFeatures other_type = needed;
   other_type.material_types = bit(MaterialType::matte);
   EXPECT_FALSE(covers(other_type, needed));
+}
+
+TEST(ShaderFeatures, ShapeKinds) {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.spheres.push_back(Sphere{});
+  ShaderFeatures spheres_only = scene_features(s);
+  EXPECT_TRUE(spheres_only.has_spheres);
+  EXPECT_FALSE(spheres_only.has_quads);
+  EXPECT_NE(shader_defines(spheres_only).find("#define GLINT_NO_QUADS\n"), std::string::npos);
+  EXPECT_EQ(shader_defines(spheres_only).find("GLINT_NO_SPHERES"), std::string::npos);
+  s.spheres.clear();
+  s.quads.push_back(Quad{});
+  ShaderFeatures quads_only = scene_features(s);
+  EXPECT_FALSE(quads_only.has_spheres);
+  EXPECT_TRUE(quads_only.has_quads);
+  EXPECT_FALSE(covers(spheres_only, quads_only));
+  EXPECT_FALSE(covers(quads_only, spheres_only));
+  EXPECT_TRUE(covers(generic_features(), quads_only));
+}
+
+TEST(ShaderFeatures, SamplerDefinesAndCover) {
+  ShaderFeatures pcg = generic_features(), sobol = generic_features();
+  pcg.sobol_sampler = false;
+  sobol.pcg_sampler = false;
+  EXPECT_EQ(shader_defines(pcg), "#define GLINT_NO_SOBOL_SAMPLER\n");
+  EXPECT_EQ(shader_defines(sobol), "#define GLINT_NO_PCG_SAMPLER\n");
+  EXPECT_TRUE(covers(generic_features(), pcg));
+  EXPECT_FALSE(covers(pcg, sobol));
+  EXPECT_FALSE(covers(sobol, pcg));
+  ShaderFeatures scene = scene_features(Scene{});
+  EXPECT_TRUE(scene.pcg_sampler && scene.sobol_sampler);  // the render options decide
 }
 
 TEST(ShaderFeatures, TraversalDefinesAndCover) {
