@@ -98,17 +98,18 @@ layout(location = 1) out vec4 out_compensation;
 // and 2-D dimensions are scrambled independently, sobol.glsl). Dimensions are laid out by
 // purpose so that every sample uses the same one for the same decision (a dimension shared by
 // different decisions in different samples loses its stratification): 0 and 1 the pixel and
-// lens positions (2-D), then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
+// lens positions (2-D; the pixel's shares a 4-D point with the first light point, g_primary),
+// then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
 // Decisions that are taken only sometimes (coverage, roulette) use the PCG stream.
 uint g_rng;
 uint g_sample_index;
 uint g_pixel_seed;
 // Sobol: one 4-D point (sobol_sample_4d) for the two first decisions that interact, the light
 // point at the first vertex (xy: Sobol dimensions 0 and 1, a (0,2)-sequence) and the position
-// in the pixel (zw: dimensions 2 and 3: a (0,4,2)-net at 16 samples, t <= 2 for every prefix up to 256),
-// so that the visibility and distance of the light, which change across the pixel, are
-// integrated over a 4-D net (Burley 2020, sec. 4); the other decisions are padded (their own
-// shuffled and scrambled pairs).
+// in the pixel (zw: dimensions 2 and 3, a (0,4,2)-net at 16 samples and t <= 2 for every
+// power-of-two prefix up to 256), so that the light's visibility and distance, which change
+// across the pixel, are integrated over a 4-D net (Burley 2020); the other decisions are
+// padded (their own shuffled and scrambled pairs).
 vec4 g_primary;
 float rand() {
   g_rng = rng_advance(g_rng);

@@ -1,7 +1,7 @@
 // Owen-scrambled Sobol points with hash-based scrambling and Burley's padding (Burley 2020,
 // "Practical Hash-based Owen Scrambling", JCGT 9(4)): every dimension pair is the first two
-// Sobol dimensions, with its own shuffle of the sample index and its own scramble of each
-// coordinate. Needs rng.glsl (pcg_hash, rng_to_unit_float).
+// Sobol dimensions, and every 4-D group the first four, with its own shuffle of the sample index
+// and its own scramble of each coordinate. Needs rng.glsl (pcg_hash, rng_to_unit_float).
 #ifndef GLINT_SOBOL_GLSL
 #define GLINT_SOBOL_GLSL
 
@@ -97,8 +97,9 @@ vec2 sobol_sample_2d(uint sample_index, uint pixel_seed, uint dimension_pair) {
 }
 
 // Point sample_index of the 4-D group `group` (Sobol dimensions 0 to 3 under one shuffle, each
-// coordinate scrambled on its own; Burley 2020, sec. 4): for decisions that interact, so that
-// the 4-D point set, not only its 2-D halves, is stratified. Seeded apart from the pairs.
+// coordinate scrambled on its own, as Burley 2020 does for 4-D points): for decisions that
+// interact, so that the 4-D point set, not only its 2-D halves, is stratified. Seeded apart
+// from the pairs.
 vec4 sobol_sample_4d(uint sample_index, uint pixel_seed, uint group) {
   uint seed = sobol_dimension_seed(pixel_seed, group, 4u);
   uint index = nested_uniform_scramble(sample_index, seed);
