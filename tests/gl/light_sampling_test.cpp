@@ -94,11 +94,8 @@ RegionMeans region_means(const Image& a, const Image& b) {
   return r;
 }
 
-// The original program's estimator: BSDF sampling only, no roulette, independent PCG numbers.
-// It is the reference here because the standard error of a region mean, estimated from the
-// difference of two renders, is trustworthy for independent samples; for scrambled Sobol points
-// two renders can agree far better than their error (measured: a region 0.0067 off the
-// converged value while the two renders differed by 0.0001).
+// The original program's estimator: BSDF sampling only, no roulette, independent PCG numbers
+// (the reference of the tests below: an estimator that shares no technique with those tested).
 RenderOptions bsdf_only() {
   RenderOptions o;
   o.light_sampling = o.environment_sampling = o.russian_roulette = false;
