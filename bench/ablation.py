@@ -25,8 +25,8 @@ CONFIGS = [
      ["--no-env-sampling", "--no-roulette", "--generic-shader", "--sampler", "pcg"]),
     ("+ environment importance sampling", ["--no-roulette", "--generic-shader", "--sampler", "pcg"]),
     ("+ Russian roulette", ["--generic-shader", "--sampler", "pcg"]),
-    ("+ shader specialised to the scene (the defaults)", ["--sampler", "pcg"]),
-    ("+ Owen-scrambled Sobol instead of PCG (option)", ["--sampler", "sobol"]),
+    ("+ shader specialised to the scene", ["--sampler", "pcg"]),
+    ("+ Owen-scrambled Sobol instead of PCG (the defaults)", ["--sampler", "sobol"]),
 ]
 
 

@@ -313,7 +313,9 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
              "trace time `glint render` reports (start-up and shader compilation excluded)")
     L.append("- the reference is Glint's own, so these errors measure noise, not bias (bias is "
              "the Mitsuba section's job); the reference's own noise adds about relMSE(ladder "
-             f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point\n")
+             f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point")
+    L.append("- Glint renders with its default sampler (Owen-scrambled Sobol); the error per sample "
+             "of Sobol against PCG at equal spp is measured by bench/qmc_gain.py (bench/SAMPLER.md)\n")
     L.append("## Convergence and time to error\n")
     L.append("| scene | size | Msamples/s | spp/s | slope vs spp | slope vs time | relMSE @ max spp | "
              "trimmed | FLIP @ max spp | t(relMSE 1e-1) | t(1e-2) | t(1e-3) |")

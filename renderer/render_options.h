@@ -1,8 +1,9 @@
 // How the renderer estimates an image, as opposed to what the scene is: these are not saved in
-// projects. The defaults are unbiased and use independent random numbers (PCG, so error bars
-// from seed spreads hold; Sobol converges faster on some scenes, see bench/RESULTS.md). The
-// switches exist so that the bench can measure each technique and users can trade bias for
-// noise.
+// projects. The defaults are unbiased. The default sampler is Owen-scrambled Sobol (less error
+// per sample, bench/RESULTS.md); every seed is an independent scramble, so error bars from seed
+// spreads hold as they do for PCG's independent numbers (tests/unit/shader_sobol_test.cpp,
+// tests/gl/light_sampling_test.cpp). The switches exist so that the bench can measure each
+// technique and users can trade bias for noise.
 #pragma once
 
 namespace glint {
@@ -17,7 +18,7 @@ struct RenderOptions {
   bool light_sampling = true;        // next-event estimation + MIS for emitting spheres and quads
   bool environment_sampling = true;  // ... and for an environment map (importance-sampled)
   bool russian_roulette = true;      // unbiased path termination after a few bounces
-  SamplerKind sampler = SamplerKind::pcg;
+  SamplerKind sampler = SamplerKind::sobol;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
   Accel accel = Accel::automatic;
   bool operator==(const RenderOptions&) const = default;

@@ -111,27 +111,39 @@ layout(location = 1) out vec4 out_compensation;
 // and 2-D dimensions are scrambled independently, sobol.glsl). Dimensions are laid out by
 // purpose so that every sample uses the same one for the same decision (a dimension shared by
 // different decisions in different samples loses its stratification): 0 and 1 the pixel and
-// lens positions (2-D), then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
+// lens positions (2-D; the pixel's shares a 4-D point with the first light point, g_primary),
+// then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
 // Decisions that are taken only sometimes (coverage, roulette) use the PCG stream.
 uint g_rng;
 uint g_sample_index;
 uint g_pixel_seed;
+// Sobol: one 4-D point (sobol_sample_4d) for the two first decisions that interact, the light
+// point at the first vertex (xy: Sobol dimensions 0 and 1, a (0,2)-sequence) and the position
+// in the pixel (zw: dimensions 2 and 3, a (0,4,2)-net at 16 samples and t <= 2 for every
+// power-of-two prefix up to 256), so that the light's visibility and distance, which change
+// across the pixel, are integrated over a 4-D net (Burley 2020); the other decisions are
+// padded (their own shuffled and scrambled pairs).
+vec4 g_primary;
 float rand() {
   g_rng = rng_advance(g_rng);
   return rng_to_unit_float(g_rng);
 }
+const uint DIMENSIONS_PER_BOUNCE = 2u;
+uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
+uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
 float sample_1d(uint dimension) {
   if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, dimension);
   return rand();
 }
 vec2 sample_2d(uint dimension) {
-  if (u_sobol) return sobol_sample_2d(g_sample_index, g_pixel_seed, dimension);
+  if (u_sobol) {
+    if (dimension == 0u) return g_primary.zw;
+    if (dimension == light_dimension(0)) return g_primary.xy;
+    return sobol_sample_2d(g_sample_index, g_pixel_seed, dimension);
+  }
   float a = rand();
   return vec2(a, rand());
 }
-const uint DIMENSIONS_PER_BOUNCE = 2u;
-uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
-uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
 
 #if !defined(GLINT_NO_TEXTURES)
 vec4 fetch_texel(ivec4 layer, int x, int y) {
@@ -509,6 +521,7 @@ void main() {
   for (int s = 0; s < u_samples_per_pass; ++s) {
     g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
     g_sample_index = u_samples_before + uint(s);
+    if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
     g_incomplete = false;
     vec2 jitter = sample_2d(0u);
     vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);

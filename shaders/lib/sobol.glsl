@@ -1,7 +1,7 @@
 // Owen-scrambled Sobol points with hash-based scrambling and Burley's padding (Burley 2020,
 // "Practical Hash-based Owen Scrambling", JCGT 9(4)): every dimension pair is the first two
-// Sobol dimensions, with its own shuffle of the sample index and its own scramble of each
-// coordinate. Needs rng.glsl (pcg_hash, rng_to_unit_float).
+// Sobol dimensions, and every 4-D group the first four, with its own shuffle of the sample index
+// and its own scramble of each coordinate. Needs rng.glsl (pcg_hash, rng_to_unit_float).
 #ifndef GLINT_SOBOL_GLSL
 #define GLINT_SOBOL_GLSL
 
@@ -19,6 +19,37 @@ uint sobol_dimension1(uint index) {
   for (uint i = index; i != 0u; i >>= 1u) {
     if ((i & 1u) != 0u) result ^= v;
     v ^= v >> 1u;
+  }
+  return result;
+}
+
+// Sobol dimensions 2 and 3 with the direction numbers of Joe and Kuo ("Constructing Sobol
+// sequences with better two-dimensional projections", SIAM J. Sci. Comput. 30, 2008; the
+// new-joe-kuo-6.21201 table): dimension 2 has polynomial x^2 + x + 1 (s = 2, a = 1,
+// m = 1, 3), dimension 3 has x^3 + x + 1 (s = 3, a = 1, m = 1, 3, 1). Bratley and Fox's
+// recurrence m_k = 2 a_1 m_(k-1) xor ... xor 2^s m_(k-s) xor m_(k-s) in 32-bit fixed point
+// (V_k = m_k << (32 - k)) is V_k = V_(k-1) xor V_(k-2) xor (V_(k-2) >> 2) for dimension 2 and
+// V_k = V_(k-2) xor V_(k-3) xor (V_(k-3) >> 3) for dimension 3.
+uint sobol_dimension2(uint index) {
+  uint result = 0u;
+  uint a = 0x80000000u, b = 0xc0000000u;  // V_k and V_(k+1), from k = 1
+  for (uint i = index; i != 0u; i >>= 1u) {
+    if ((i & 1u) != 0u) result ^= a;
+    uint next = b ^ a ^ (a >> 2u);
+    a = b;
+    b = next;
+  }
+  return result;
+}
+uint sobol_dimension3(uint index) {
+  uint result = 0u;
+  uint a = 0x80000000u, b = 0xc0000000u, c = 0x20000000u;  // V_k, V_(k+1), V_(k+2)
+  for (uint i = index; i != 0u; i >>= 1u) {
+    if ((i & 1u) != 0u) result ^= a;
+    uint next = b ^ a ^ (a >> 3u);
+    a = b;
+    b = c;
+    c = next;
   }
   return result;
 }
@@ -63,6 +94,20 @@ vec2 sobol_sample_2d(uint sample_index, uint pixel_seed, uint dimension_pair) {
   uint x = nested_uniform_scramble(sobol_dimension0(index), pcg_hash(seed));
   uint y = nested_uniform_scramble(sobol_dimension1(index), pcg_hash(seed + 1u));
   return vec2(rng_to_unit_float(x), rng_to_unit_float(y));
+}
+
+// Point sample_index of the 4-D group `group` (Sobol dimensions 0 to 3 under one shuffle, each
+// coordinate scrambled on its own, as Burley 2020 does for 4-D points): for decisions that
+// interact, so that the 4-D point set, not only its 2-D halves, is stratified. Seeded apart
+// from the pairs.
+vec4 sobol_sample_4d(uint sample_index, uint pixel_seed, uint group) {
+  uint seed = sobol_dimension_seed(pixel_seed, group, 4u);
+  uint index = nested_uniform_scramble(sample_index, seed);
+  uint x = nested_uniform_scramble(sobol_dimension0(index), pcg_hash(seed));
+  uint y = nested_uniform_scramble(sobol_dimension1(index), pcg_hash(seed + 1u));
+  uint z = nested_uniform_scramble(sobol_dimension2(index), pcg_hash(seed + 2u));
+  uint w = nested_uniform_scramble(sobol_dimension3(index), pcg_hash(seed + 3u));
+  return vec4(rng_to_unit_float(x), rng_to_unit_float(y), rng_to_unit_float(z), rng_to_unit_float(w));
 }
 
 // One dimension in [0,1): a shuffled, scrambled van der Corput sequence, seeded apart from the

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "tests/gl/gl_test_support.h"
 
@@ -93,11 +94,8 @@ RegionMeans region_means(const Image& a, const Image& b) {
   return r;
 }
 
-// The original program's estimator: BSDF sampling only, no roulette, independent PCG numbers.
-// It is the reference here because the standard error of a region mean, estimated from the
-// difference of two renders, is trustworthy for independent samples; for scrambled Sobol points
-// two renders can agree far better than their error (measured: a region 0.0067 off the
-// converged value while the two renders differed by 0.0001).
+// The original program's estimator: BSDF sampling only, no roulette, independent PCG numbers
+// (the reference of the tests below: an estimator that shares no technique with those tested).
 RenderOptions bsdf_only() {
   RenderOptions o;
   o.light_sampling = o.environment_sampling = o.russian_roulette = false;
@@ -151,6 +149,108 @@ TEST(LightSampling, SobolSamplerIsUnbiased) {
   Scene s = lit_scene();
   RegionMeans m = region_means(render(s, sobol, 256, 1), render(s, sobol, 256, 2));
   expect_same_expectation(renders().bsdf, m, "Sobol vs BSDF sampling");
+}
+
+// Direct light only (the bench's direct-light case): a matte floor and ball under the quad lamp
+// and a dim sky, max_bounces 1, the lamp itself out of view, so that pixel values have no heavy
+// tail (no caustics) and the sums below are dominated by no single pixel.
+Scene direct_light_scene() {
+  Scene s = empty_scene();
+  s.camera.position = {0, 1.0f, 3.2f};
+  s.camera.target = {0, 0.5f, 0};
+  s.camera.vfov_deg = 30;  // the lamp (whose edges would hold most of the variance) out of view
+  s.environment.color = {0.1f, 0.12f, 0.15f};
+  s.render.max_bounces = 1;
+  s.materials.push_back({.name = "floor", .color = {0.7f, 0.7f, 0.7f}});
+  s.materials.push_back({.name = "lamp", .color = {0, 0, 0}, .emission = {12, 10, 8}});
+  s.materials.push_back({.name = "ball", .color = {0.8f, 0.3f, 0.2f}});
+  s.quads.push_back({.name = "floor", .material = "floor",
+                     .corners = {glm::vec3{-3, 0, -3}, glm::vec3{-3, 0, 3}, glm::vec3{3, 0, -3}, glm::vec3{3, 0, 3}}});
+  s.quads.push_back({.name = "lamp", .material = "lamp",
+                     .corners = {glm::vec3{-0.8f, 2, -0.8f}, glm::vec3{-0.8f, 2, 0.4f}, glm::vec3{0.4f, 2, -0.8f}, glm::vec3{0.4f, 2, 0.4f}}});
+  s.spheres.push_back({.name = "ball", .center = {0.1f, 0.4f, 0.1f}, .radius = 0.4f, .material = "ball"});
+  return s;
+}
+
+// The seed spread of Sobol renders is their error, as bench/ and the error bars assume: each seed
+// is an independent randomisation, so the per-pixel variance across seeds is the variance of
+// one render. 2K = 32 seeds at 16 spp, on the direct-light scene above. Two statistics over the
+// P = 1024 pixels, each a ratio of weighted sums of per-pixel squares (chi-square distributed
+// for normal pixel values), and both 1 in expectation when the seeds are independent:
+//  T1 = sum w (A - B)^2 / sum w 2 s^2 / K: the means A, B of two groups of K seeds against the
+//       pooled within-group variance s^2 (2K - 2 degrees of freedom per pixel); seeds
+//       correlated within a group make the group means disagree more than s^2 says, seeds
+//       correlated across the groups make them agree more;
+//  T2 = sum w (M - R)^2 / sum w (s^2 / 2K + v): the mean M of all 2K seeds against an
+//       independent PCG reference R (two renders of 512 spp, whose per-pixel variance of the
+//       mean v is estimated as (R1 - R2)^2 / 4); a component all seeds share (a bias, or a
+//       correlation common to every seed) makes M miss R by more than the spread says.
+// The weights w = 1 / variance come from 16 further seeds (independent of both sums, so each
+// sum keeps its expectation) and spread the statistic over all pixels instead of the few
+// edge pixels that hold most of Sobol's variance. Tolerance: 4 standard deviations of each
+// ratio, from the delta method with the variance of each sum bounded by the sum of its terms'
+// squares (Var X <= E X^2, estimated per pixel).
+TEST(LightSampling, SobolSeedSpreadIsItsError) {
+  ensure_gl_context();
+  constexpr int kHalf = 16, kWeightSeeds = 16, kSpp = 16;
+  RenderOptions sobol;
+  sobol.sampler = SamplerKind::sobol;
+  RenderOptions pcg;
+  pcg.sampler = SamplerKind::pcg;
+  const Scene s = direct_light_scene();
+  auto render_spp = [&](const RenderOptions& o, int spp, uint32_t seed) {
+    Scene v = s;
+    v.render.seed = seed;
+    GpuRenderer r;
+    r.set_options(o);
+    r.sync(v, kSize, kSize);
+    r.trace(spp);
+    return r.read_accumulation();
+  };
+  std::vector<Image> images, weight_images;
+  for (int k = 0; k < 2 * kHalf; ++k) images.push_back(render_spp(sobol, kSpp, 100 + uint32_t(k)));
+  for (int k = 0; k < kWeightSeeds; ++k) weight_images.push_back(render_spp(sobol, kSpp, 200 + uint32_t(k)));
+  const Image r1 = render(s, pcg, 512, 901), r2 = render(s, pcg, 512, 902);
+  // Per-pixel variance across the weight seeds; a floor of its image mean keeps pixels whose
+  // 16 weight seeds happened to agree from taking all the weight.
+  std::vector<double> var_w(kSize * kSize);
+  double mean_var_w = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      double m = 0, ss = 0;
+      for (const Image& im : weight_images) m += lum(im, x, y) / kWeightSeeds;
+      for (const Image& im : weight_images) ss += std::pow(lum(im, x, y) - m, 2);
+      var_w[y * kSize + x] = ss / (kWeightSeeds - 1);
+      mean_var_w += var_w[y * kSize + x] / (kSize * kSize);
+    }
+  ASSERT_GT(mean_var_w, 0);
+  double n1 = 0, d1 = 0, n1_sq = 0, d1_sq = 0, n2 = 0, d2 = 0, n2_sq = 0, d2_sq = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const double w = 1 / (var_w[y * kSize + x] + mean_var_w);
+      double a = 0, b = 0;
+      for (int k = 0; k < kHalf; ++k) {
+        a += lum(images[k], x, y) / kHalf;
+        b += lum(images[kHalf + k], x, y) / kHalf;
+      }
+      double ss = 0;
+      for (int k = 0; k < kHalf; ++k) {
+        ss += std::pow(lum(images[k], x, y) - a, 2) + std::pow(lum(images[kHalf + k], x, y) - b, 2);
+      }
+      const double s2 = ss / (2 * kHalf - 2);
+      const double t1n = w * (a - b) * (a - b), t1d = w * 2 * s2 / kHalf;
+      const double m = 0.5 * (a + b), ref = 0.5 * (lum(r1, x, y) + lum(r2, x, y));
+      const double v = std::pow(lum(r1, x, y) - lum(r2, x, y), 2) / 4;
+      const double t2n = w * (m - ref) * (m - ref), t2d = w * (s2 / (2 * kHalf) + v);
+      n1 += t1n, d1 += t1d, n1_sq += t1n * t1n, d1_sq += t1d * t1d;
+      n2 += t2n, d2 += t2d, n2_sq += t2n * t2n, d2_sq += t2d * t2d;
+    }
+  const double t1 = n1 / d1, sd1 = t1 * std::sqrt(n1_sq / (n1 * n1) + d1_sq / (d1 * d1));
+  const double t2 = n2 / d2, sd2 = t2 * std::sqrt(n2_sq / (n2 * n2) + d2_sq / (d2 * d2));
+  std::printf("Sobol seeds: T1 (between / within groups) %.3f +- %.3f, T2 (mean vs PCG reference) %.3f +- %.3f\n",
+              t1, sd1, t2, sd2);
+  EXPECT_NEAR(t1, 1.0, 4 * sd1);
+  EXPECT_NEAR(t2, 1.0, 4 * sd2);
 }
 
 TEST(LightSampling, FireflyClampOnlyDarkens) {

@@ -100,6 +100,95 @@ TYPED_TEST(ShaderSobol, ScrambledPrefixesAreNets) {
   }
 }
 
+// The smallest t for which the 2^m points form a (t,m,2)-net in base 2 (every elementary
+// interval of area 2^(t-m) holds 2^t points), or -1 for none.
+int net_t(const std::vector<std::uint32_t>& xs, const std::vector<std::uint32_t>& ys, int m) {
+  for (int t = 0; t <= m; ++t) {
+    bool ok = true;
+    const int k = m - t;
+    for (int a = 0; a <= k && ok; ++a) {
+      const int b = k - a;
+      std::vector<int> count(std::size_t(1) << k, 0);
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        std::uint32_t cx = a == 0 ? 0 : xs[i] >> (32 - a), cy = b == 0 ? 0 : ys[i] >> (32 - b);
+        ++count[(std::size_t(cx) << b) | cy];
+      }
+      for (int c : count) ok = ok && c == (1 << t);
+    }
+    if (ok) return t;
+  }
+  return -1;
+}
+
+// The t-values of the six 2-D projections of Sobol dimensions 0 to 3 (Joe-Kuo direction
+// numbers) for the first 2^m points, m = 1..8, computed from the generator matrices; Owen
+// scrambling and the index shuffle keep them (a shuffled prefix is an aligned block, a digital
+// shift of the first one). Dimensions 0 and 1 are the (0,2)-sequence; at 16 points (m = 4)
+// dimensions 2 and 3 form a (0,4,2)-net as well.
+constexpr int kPairT[6][8] = {{0, 0, 0, 0, 0, 0, 0, 0}, {0, 0, 1, 0, 1, 1, 1, 1}, {0, 0, 1, 2, 0, 1, 2, 1},
+                              {0, 1, 0, 1, 1, 1, 1, 1}, {0, 1, 0, 1, 2, 0, 1, 2}, {0, 1, 2, 0, 1, 1, 1, 1}};
+constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+// Sobol dimensions 2 and 3: their first direction numbers (dimension 2: m = 1, 3, 3, 9;
+// dimension 3: m = 1, 3, 1, 5, from the recurrences), every dimension 1-D stratified for all
+// power-of-two prefixes up to 2^16, and the projections' t-values; then the scrambled 4-D
+// points of several pixel seeds and groups with the same t-values and 1-D strata.
+TYPED_TEST(ShaderSobol, FourDimensionalPointsAreNets) {
+  using L = TypeParam;
+  EXPECT_EQ(L::sobol_dimension2(1u), 0x80000000u);
+  EXPECT_EQ(L::sobol_dimension2(2u), 0xc0000000u);
+  EXPECT_EQ(L::sobol_dimension2(4u), 0x60000000u);
+  EXPECT_EQ(L::sobol_dimension2(8u), 0x90000000u);
+  EXPECT_EQ(L::sobol_dimension3(1u), 0x80000000u);
+  EXPECT_EQ(L::sobol_dimension3(2u), 0xc0000000u);
+  EXPECT_EQ(L::sobol_dimension3(4u), 0x20000000u);
+  EXPECT_EQ(L::sobol_dimension3(8u), 0x50000000u);
+  auto dimension = [](int d, std::uint32_t i) {
+    return d == 0 ? L::sobol_dimension0(i) : d == 1 ? L::sobol_dimension1(i) : d == 2 ? L::sobol_dimension2(i) : L::sobol_dimension3(i);
+  };
+  auto one_per_stratum = [](const std::vector<std::uint32_t>& v, int m) {
+    std::vector<int> strata(std::size_t(1) << m, 0);
+    for (std::uint32_t z : v) strata[m == 0 ? 0 : z >> (32 - m)] += 1;
+    return *std::max_element(strata.begin(), strata.end()) == 1;
+  };
+  for (int m = 0; m <= 16; ++m) {
+    for (int d = 2; d < 4; ++d) {
+      std::vector<std::uint32_t> v;
+      for (std::uint32_t i = 0; i < (1u << m); ++i) v.push_back(dimension(d, i));
+      EXPECT_TRUE(one_per_stratum(v, m)) << "dimension " << d << " m " << m;
+    }
+  }
+  for (int m = 1; m <= 8; ++m) {
+    for (int p = 0; p < 6; ++p) {
+      std::vector<std::uint32_t> xs, ys;
+      for (std::uint32_t i = 0; i < (1u << m); ++i) {
+        xs.push_back(dimension(kPairs[p][0], i));
+        ys.push_back(dimension(kPairs[p][1], i));
+      }
+      EXPECT_EQ(net_t(xs, ys, m), kPairT[p][m - 1]) << "dimensions " << kPairs[p][0] << "," << kPairs[p][1] << " m " << m;
+    }
+  }
+  for (std::uint32_t pixel : {0u, 1u, 77u, 0xdeadbeefu}) {
+    std::uint32_t seed = L::sobol_pixel_seed(pixel, pixel * 3u, 5u);
+    for (std::uint32_t group : {0u, 1u, 9u}) {
+      for (int m = 1; m <= 8; ++m) {
+        std::vector<std::uint32_t> c[4];
+        for (std::uint32_t i = 0; i < (1u << m); ++i) {
+          auto q = L::sobol_sample_4d(i, seed, group);
+          c[0].push_back(fixed(q.x));
+          c[1].push_back(fixed(q.y));
+          c[2].push_back(fixed(q.z));
+          c[3].push_back(fixed(q.w));
+        }
+        for (int d = 0; d < 4; ++d) EXPECT_TRUE(one_per_stratum(c[d], m)) << "pixel " << pixel << " coordinate " << d << " m " << m;
+        for (int p = 0; p < 6; ++p)
+          EXPECT_EQ(net_t(c[kPairs[p][0]], c[kPairs[p][1]], m), kPairT[p][m - 1])
+              << "pixel " << pixel << " group " << group << " coordinates " << kPairs[p][0] << "," << kPairs[p][1] << " m " << m;
+      }
+    }
+  }
+}
+
 // Values in [0,1) and the float and double builds identical (the pipeline is integer up to
 // the exact 24-bit conversion), for random and extreme indices, seeds and dimensions.
 TYPED_TEST(ShaderSobol, ValuesAreInTheUnitInterval) {
@@ -258,6 +347,110 @@ TYPED_TEST(ShaderSobol, IntegratesWithLowerErrorThanPcg) {
     const ErrorStats &s = sobol.back(), &q = pcg.back();
     EXPECT_LT(s.rms + 4 * std::sqrt(s.se * s.se + q.se * q.se), q.rms) << names[f];
   }
+}
+
+
+// Sample moments of a set of estimates.
+struct Moments {
+  double mean = 0, variance = 0, kurtosis = 0;  // variance with n - 1; kurtosis m4 / m2^2
+};
+Moments moments_of(const std::vector<double>& v) {
+  Moments m;
+  const double n = double(v.size());
+  for (double x : v) m.mean += x / n;
+  double m2 = 0, m4 = 0;
+  for (double x : v) {
+    const double d = (x - m.mean) * (x - m.mean);
+    m2 += d / n;
+    m4 += d * d / n;
+  }
+  m.variance = m2 * n / (n - 1);
+  m.kurtosis = m4 / (m2 * m2);
+  return m;
+}
+
+// Sample correlation of (a[i], b[i]).
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const Moments ma = moments_of(a), mb = moments_of(b);
+  double c = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) c += (a[i] - ma.mean) * (b[i] - mb.mean);
+  return c / double(a.size() - 1) / std::sqrt(ma.variance * mb.variance);
+}
+
+// The integrand of the seed tests, over the kinds of dimensions the trace shader uses: a disc's
+// indicator of the 4-D group's first half times a smooth function of its second half, plus a
+// step in the 1-D dimension 2 and a product over pair 3 (7 dimensions, discontinuous and smooth
+// parts; integral pi r^2 (Ei(1) - gamma) + 0.3 + 0.25).
+constexpr double kDiscR = 0.35;
+const double kSeedIntegral = std::numbers::pi * kDiscR * kDiscR * 1.3179021514544038 + 0.3 + 0.25;
+template <class L>
+double seed_test_estimate(std::uint32_t pixel_seed, int n) {
+  double sum = 0;
+  for (int i = 0; i < n; ++i) {
+    const auto g = L::sobol_sample_4d(std::uint32_t(i), pixel_seed, 0u);
+    const dvec2 a(double(g.x), double(g.y)), b(double(g.z), double(g.w));
+    const double c = double(L::sobol_sample_1d(std::uint32_t(i), pixel_seed, 2u));
+    const dvec2 d = to_d(L::sobol_sample_2d(std::uint32_t(i), pixel_seed, 3u));
+    const double dx = a.x - 0.45, dy = a.y - 0.55;
+    sum += (dx * dx + dy * dy < kDiscR * kDiscR ? std::exp(b.x * b.y) : 0.0) + (c < 0.3 ? 1.0 : 0.0) + d.x * d.y;
+  }
+  return sum / n;
+}
+
+// Every seed is its own randomisation of the point set (the seed enters the scramble of every
+// dimension through the pixel seed), so the estimates of one pixel under different seeds are
+// independent and identically distributed, as those of different pixels under one seed are:
+// what error bars from the spread of seeds need. With n = 8192 estimates (N = 16 points each):
+// (a) their mean is the integral within 4 standard errors (sd / sqrt(n));
+// (b) the sample correlation of estimate pairs, for neighbouring seeds, seeds that differ in
+//     the top bit only, and neighbouring pixels under one seed, is 0 within 4 / sqrt(pairs)
+//     (under independence sqrt(pairs) r is asymptotically standard normal);
+// (c) the variance across seeds equals the variance across pixels: the log of the ratio of the
+//     two sample variances is 0 within 4 of its standard deviations, sqrt(sum over both of
+//     (2 / (n - 1) + (kurtosis - 3) / n)), the chi-square variance of a sample variance
+//     corrected for the estimates' kurtosis;
+// and (d) the variance is that of a low-discrepancy estimate: below half the variance of the
+// mean of 16 independent uniform points (the PCG sampler's), Var(F) / 16, with Var(F) estimated
+// from single points of the same sequences (the disc's edge holds the gain at N = 16 to about
+// N^0.5 = 4: scrambled-net variance of an indicator falls as N^-1.5, Owen 1997).
+TYPED_TEST(ShaderSobol, SeedsAreIndependentRandomisations) {
+  using L = TypeParam;
+  const int n = 8192, points = 16;
+  const std::uint32_t px = 7, py = 11;
+  std::vector<double> by_seed(n), by_top_bit(n), by_pixel(n), neighbour_pixel(n), single(n);
+  for (int k = 0; k < n; ++k) {
+    const std::uint32_t s = std::uint32_t(k);
+    by_seed[k] = seed_test_estimate<L>(L::sobol_pixel_seed(px, py, s), points);
+    by_top_bit[k] = seed_test_estimate<L>(L::sobol_pixel_seed(px, py, s ^ 0x80000000u), points);
+    by_pixel[k] = seed_test_estimate<L>(L::sobol_pixel_seed(s % 128u, s / 128u, 12345u), points);
+    neighbour_pixel[k] = seed_test_estimate<L>(L::sobol_pixel_seed(s % 128u + 1u, s / 128u, 12345u), points);
+    single[k] = seed_test_estimate<L>(L::sobol_pixel_seed(px, py, s + 0x40000000u), 1);
+  }
+  const Moments seeds = moments_of(by_seed), pixels = moments_of(by_pixel), one = moments_of(single);
+  std::printf("[ sobol %s ] N = %d: mean over seeds %.6f (exact %.6f, se %.1e), sd over seeds %.4e, "
+              "over pixels %.4e, of one point / sqrt(N) %.4e\n",
+              L::kName, points, seeds.mean, kSeedIntegral, std::sqrt(seeds.variance / n),
+              std::sqrt(seeds.variance), std::sqrt(pixels.variance), std::sqrt(one.variance / points));
+  // (a)
+  EXPECT_NEAR(seeds.mean, kSeedIntegral, 4 * std::sqrt(seeds.variance / n));
+  EXPECT_NEAR(pixels.mean, kSeedIntegral, 4 * std::sqrt(pixels.variance / n));
+  EXPECT_NEAR(one.mean, kSeedIntegral, 4 * std::sqrt(one.variance / n));
+  // (b)
+  std::vector<double> even, odd;
+  for (int k = 0; k + 1 < n; k += 2) {
+    even.push_back(by_seed[k]);
+    odd.push_back(by_seed[k + 1]);
+  }
+  const double bound_half = 4 / std::sqrt(double(n / 2)), bound = 4 / std::sqrt(double(n));
+  EXPECT_LT(std::abs(correlation(even, odd)), bound_half) << "seeds k and k + 1";
+  EXPECT_LT(std::abs(correlation(by_seed, by_top_bit)), bound) << "seeds k and k + 2^31";
+  EXPECT_LT(std::abs(correlation(by_pixel, neighbour_pixel)), bound) << "pixels x and x + 1";
+  // (c)
+  const double log_ratio = std::log(seeds.variance / pixels.variance);
+  const double sd = std::sqrt((2.0 / (n - 1) + (seeds.kurtosis - 3) / n) + (2.0 / (n - 1) + (pixels.kurtosis - 3) / n));
+  EXPECT_LT(std::abs(log_ratio), 4 * sd) << "variance across seeds / across pixels " << std::exp(log_ratio);
+  // (d)
+  EXPECT_LT(seeds.variance, 0.5 * one.variance / points);
 }
 
 }  // namespace

@@ -70,6 +70,9 @@ namespace {
     GLINT_SHADER_FWD(NS, sobol_pixel_seed)                                                     \
     GLINT_SHADER_FWD(NS, sobol_sample_2d)                                                      \
     GLINT_SHADER_FWD(NS, sobol_sample_1d)                                                      \
+    GLINT_SHADER_FWD(NS, sobol_sample_4d)                                                      \
+    GLINT_SHADER_FWD(NS, sobol_dimension2)                                                     \
+    GLINT_SHADER_FWD(NS, sobol_dimension3)                                                     \
     GLINT_SHADER_FWD(NS, direction_to_uv)                                                      \
     GLINT_SHADER_FWD(NS, uv_to_direction)                                                      \
     GLINT_SHADER_FWD(NS, environment_uv)                                                       \
