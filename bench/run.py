@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Glint's speed-against-error benchmark (issue 4, parts 2 and 3). Run it through bench/run.sh.
+"""Glint's speed-against-error benchmark. Run it through bench/run.sh.
 
 For each bench scene (bench/scenes/*.glint, written by make_scenes.py):
   1. a reference: Glint itself at --ref-spp samples per pixel with a seed no test render uses;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Samples per second against the number of primitives, plain loop against BVH (issue 6, part 4).
+"""Samples per second against the number of primitives, plain loop against BVH.
 
 For each size N (default 10, 100, 1e3, 1e4, 1e5, 1e6) a scene of N spheres on a grid with
 N/100 small quads and a floor quad is written to --work, and rendered by `glint render` with

@@ -1,4 +1,4 @@
-// Error of a rendered image against a reference (issue 4, convergence logging). Both images are
+// Error of a rendered image against a reference (convergence logging). Both images are
 // linear RGB radiance of the same size; alpha is ignored except by nonfinite_count, where it is
 // the accumulation's count of discarded samples (GpuRenderer::read_accumulation).
 #pragma once

@@ -1,4 +1,4 @@
-// Which parts of the trace shader a scene needs (issue 5, "model only what a scene needs").
+// Which parts of the trace shader a scene needs ("model only what a scene needs").
 // Each feature that is absent becomes a `#define GLINT_NO_...` line after `#version` of
 // shaders/trace.frag; a macro that is not defined means the feature is present, so the C++
 // build of the shader library (renderer/shader_lib.h), which defines none, keeps every branch.

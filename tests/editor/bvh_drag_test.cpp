@@ -1,4 +1,4 @@
-// Editor interactivity with a large scene (issue 6, part 4): dragging one sphere of the
+// Editor interactivity with a large scene: dragging one sphere of the
 // 10^4-sphere projects/sphere_field.glint costs what the viewport does per frame before it
 // traces (validate the scene, then GpuRenderer::sync: digests, re-pack, BVH refit, upload),
 // measured here on a headless context, against the 25 ms frame of editor/frame_budget.h.

@@ -1,4 +1,4 @@
-// `glint render --reference REF --log OUT.csv` (issue 4): the convergence log of a noisy scene
+// `glint render --reference REF --log OUT.csv`: the convergence log of a noisy scene
 // against an independent reference, a white furnace against its exact image, and the errors:
 // a log path that names an input or the output, a log that cannot be written.
 // Runs the command in-process; it makes its own headless EGL context.

@@ -1,4 +1,4 @@
-// Numerical stability on hard cases (issue 4, part 4), rendered by the GPU path tracer on tiny
+// Numerical stability on hard cases, rendered by the GPU path tracer on tiny
 // images (headless EGL; llvmpipe in CI). `ctest -R hard_` runs these with the CPU ones
 // (tests/unit/hard_cases_test.cpp). Statistical tolerances come from the sample count: either
 // 4 standard errors of an image mean, or the difference between two independent renders

@@ -1,4 +1,4 @@
-// Programs specialised to a scene's ShaderFeatures (issue 5): the same image as the generic
+// Programs specialised to a scene's ShaderFeatures: the same image as the generic
 // program with the same seed, and the switch from generic to specialised without waiting.
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-// A soak test of the renderer (issue 6, part 5): the editor's per-frame calls (sync, trace,
+// A soak test of the renderer: the editor's per-frame calls (sync, trace,
 // update_display, an occasional read-back) for a long run on one headless context, measuring
 // what a session of hours could accumulate: resident memory and GL objects (a leak per frame or
 // per edit) and the accumulated mean (float32 drift over 10^5 passes).

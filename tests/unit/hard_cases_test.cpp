@@ -1,4 +1,4 @@
-// Numerical stability on hard cases (issue 4, part 4), on the CPU: the shared shader maths of
+// Numerical stability on hard cases, on the CPU: the shared shader maths of
 // shaders/lib compiled as C++ (float unless said otherwise, as the GPU runs it), and the
 // project loader. `ctest -R hard_` runs these with the GL ones (tests/gl/hard_cases_test.cpp).
 #include <gtest/gtest.h>
