@@ -20,7 +20,7 @@ struct PickHit {
 // film: the clicked position in [0,1]^2 from the top-left of the viewport; aspect = w / h.
 std::optional<PickHit> pick(const Scene& scene, glm::vec2 film, float aspect);
 
-// The focus distance (along the view direction, as DESIGN.md defines it) that makes `point`
+// The focus distance (along the view direction, as docs/DESIGN.md defines it) that makes `point`
 // sharp.
 float focus_distance_for(const Camera& camera, glm::vec3 point);
 

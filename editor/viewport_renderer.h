@@ -1,6 +1,6 @@
-// The viewport's side of one frame (DESIGN.md §2): renderer.sync(scene, size), k samples chosen
-// by the frame budget, update_display(); and one slice of a running export. Every accumulation
-// reset comes from sync() comparing digests: nothing here resets on its own.
+// The viewport's side of one frame (docs/DESIGN.md §2): renderer.sync(scene, size), k samples
+// chosen by the frame budget, update_display(); and one slice of a running export. Every
+// accumulation reset comes from sync() comparing digests: nothing here resets on its own.
 #pragma once
 
 #include <chrono>

@@ -1,4 +1,5 @@
-// The progressive GPU path tracer (DESIGN.md §2). Runs in any current OpenGL 4.5 core context.
+// The progressive GPU path tracer (docs/DESIGN.md §2). Runs in any current OpenGL 4.5 core
+// context.
 //
 // Per frame: sync(scene) compares digests and uploads only what changed, restarting the
 // accumulation when radiance inputs changed; trace(k) adds k samples per pixel into ping-pong

@@ -1,5 +1,5 @@
-// Project files (.glint, JSON, format version 1; DESIGN.md §3): load with full validation, save
-// atomically (temporary file renamed over the old one), exact round trip.
+// Project files (.glint, JSON, format version 1; docs/DESIGN.md §3): load with full validation,
+// save atomically (temporary file renamed over the old one), exact round trip.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +25,7 @@ struct ProjectError : std::runtime_error {
   std::string problem;
 };
 
-// Limits of a project, checked on load and by validate_scene (DESIGN.md §3 leaves them open).
+// Limits of a project, checked on load and by validate_scene (docs/DESIGN.md §3 lists them).
 //  - Film: at most kMaxFilmSide pixels per side (the GL_MAX_TEXTURE_SIZE of llvmpipe and common
 //    GPUs) and kMaxFilmPixels in all. The renderer keeps kFilmBytesPerPixel of GPU memory per
 //    pixel (two RGBA32F accumulation textures, two RGBA32F compensation textures and an RGBA8
@@ -65,9 +65,10 @@ Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
 Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file_label,
                       const std::filesystem::path& base_dir, bool check_files = true);
 
-// The canonical JSON of a scene: every key written, in the order of DESIGN.md's example (hence
-// ordered_json; it converts to nlohmann::json implicitly), null for empty texture references,
-// floats in their shortest exact form (0.1f as 0.1, 40.0f as 40), integers as integers.
+// The canonical JSON of a scene: every key written, in the order of docs/DESIGN.md's example
+// (hence ordered_json; it converts to nlohmann::json implicitly), null for empty texture
+// references, floats in their shortest exact form (0.1f as 0.1, 40.0f as 40), integers as
+// integers.
 // Non-finite floats (which validate_scene rejects) become null.
 nlohmann::ordered_json scene_to_json(const Scene& scene);
 

@@ -1,4 +1,4 @@
-// The four materials of DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel): evaluation,
+// The four materials of docs/DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel): evaluation,
 // sampling and pdf, consistent with each other. All directions are unit vectors in world
 // space; n is the shading normal already flipped to the side of wo. eval returns f |n.wi|.
 #ifndef GLINT_BSDF_GLSL

@@ -86,7 +86,7 @@ TEST(GpuScene, PacksOneLayerPerTextureAndEncoding) {
   EXPECT_EQ(p.materials[2].layers.x, 0);
   EXPECT_EQ(p.materials[1].layers.x, -1);
   EXPECT_EQ(p.layers[1].encoding, ColorEncoding::linear);
-  // The quad's normal follows DESIGN.md: normalize(cross(p1 - p0, p2 - p0)).
+  // The quad's normal follows docs/DESIGN.md: normalize(cross(p1 - p0, p2 - p0)).
   EXPECT_FLOAT_EQ(p.quads[0].normal.z, -1.0f);
 }
 

@@ -1,5 +1,5 @@
 // Ray-sphere and ray-quad intersection of shaders/lib/intersect.glsl and the ray-origin offset
-// of common.glsl, in float and in double (DESIGN.md §3 and §5).
+// of common.glsl, in float and in double (docs/DESIGN.md §3 and §5).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -250,13 +250,13 @@ TYPED_TEST(ShaderIntersect, TriangleHitReturnsBarycentrics) {
   }
 }
 
-// DESIGN.md §3: a quad is the triangles (p0, p1, p2) and (p1, p3, p2), p3 opposite p0, with
+// docs/DESIGN.md §3: a quad is the triangles (p0, p1, p2) and (p1, p3, p2), p3 opposite p0, with
 // texture coordinates interpolated over the triangle that was hit.
 TYPED_TEST(ShaderIntersect, QuadTextureCoordinatesFollowTheDesignConvention) {
   using L = TypeParam;
   using R = typename L::Real;
   const R inf = std::numeric_limits<R>::infinity();
-  // The ground quad of the DESIGN.md example: u = (x + 10) / 4, v = (z + 10) / 4.
+  // The ground quad of the docs/DESIGN.md example: u = (x + 10) / 4, v = (z + 10) / 4.
   const dvec3 p0(-10, 0, -10), p1(-10, 0, 10), p2(10, 0, -10), p3(10, 0, 10);
   const dvec2 uv0(0, 0), uv1(0, 5), uv2(5, 0), uv3(5, 5);
   EXPECT_NEAR(double(L::quad_normal(L::v3(p0), L::v3(p1), L::v3(p2)).y), 1.0, 4 * L::kEps);
@@ -342,7 +342,7 @@ TYPED_TEST(ShaderIntersect, QuadDiagonalHasNoCrack) {
   EXPECT_EQ(misses, 0) << "of " << rays << " rays through the shared edge";
 }
 
-// Quads need not be planar (DESIGN.md §3 only rejects zero area): a folded quad can be
+// Quads need not be planar (docs/DESIGN.md §3 only rejects zero area): a folded quad can be
 // crossed twice, and the nearer triangle must win whichever one it is.
 TYPED_TEST(ShaderIntersect, FoldedQuadReturnsTheNearerTriangle) {
   using L = TypeParam;
