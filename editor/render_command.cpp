@@ -210,6 +210,7 @@ int64_t next_checkpoint(int64_t samples, int64_t target) {
 // keeps the film's aspect), within the limits of a project's film (check_film_size) so that a
 // size the GPU cannot hold is refused before anything is allocated.
 std::pair<int, int> render_size(const Options& o, const Film& film) {
+  if (!o.width && !o.height) return {film.width, film.height};  // checked by the loader
   int64_t width = film.width, height = film.height;
   if (o.width) width = *o.width;
   if (o.height) height = *o.height;
@@ -217,7 +218,6 @@ std::pair<int, int> render_size(const Options& o, const Film& film) {
     height = std::max<int64_t>(1, std::llround(*o.width * double(film.height) / film.width));
   if (o.height && !o.width)
     width = std::max<int64_t>(1, std::llround(*o.height * double(film.width) / film.height));
-  if (!o.width && !o.height) return {film.width, film.height};  // checked by the loader
   if (const auto problem = check_film_size(width, height)) {
     const std::string& key = problem->json_path;
     std::string given;

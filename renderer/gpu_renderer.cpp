@@ -229,14 +229,14 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   bvh_valid_ = false;  // refitted or rebuilt by sync if the BVH is used
 }
 
-// Texture storage. One GL_TEXTURE_2D_ARRAY sized to the largest texture made memory follow
-// the largest width times the largest height times the count (a 16384x1 and a 1x16384 texture
-// took 8 GiB) and capped the count at GL_MAX_ARRAY_TEXTURE_LAYERS (2048 on llvmpipe). The
-// shader filters by hand (lib/mapping.glsl), so each texture is instead a row-major run of
-// texels in a buffer texture: memory is the sum of the real sizes, the count is bounded only
-// by the layer records' storage buffer, and 8-bit textures keep 4 bytes a texel. There are two
-// buffers because a buffer texture has one format (RGBA8, RGBA32F). An atlas would need packing
-// and would still cap a side; arrays per size class would need a sampler per class.
+// Texture storage. The shader filters by hand (lib/mapping.glsl), so each texture is a row-major
+// run of texels in a buffer texture: memory is the sum of the real sizes (a texture array
+// takes the largest width times the largest height for every layer, 8 GiB for a 16384x1 and a
+// 1x16384 texture), the count is bounded only by the layer records' storage buffer (an array
+// by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit textures keep 4 bytes a texel.
+// There are two buffers because a buffer texture has one format (RGBA8, RGBA32F). An atlas
+// would need packing and would still cap a side; arrays per size class would need a sampler
+// per class.
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
   auto json_path = [](const TextureLayer& layer) {
     return "textures[" + std::to_string(layer.texture) + "].path";
@@ -334,14 +334,17 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   std::shared_ptr<const TextureImage> texture;
   Image converted;
   const Image* image = &converted;
-  // Problems read "environment.texture: FILE: ...", as the loader's do.
-  std::string where = "environment.texture: ";
-  if (!env.texture.empty()) where += resolve_asset_path(scene, env.texture).string() + ": ";
+  // Problems read "environment.texture: FILE: ...", as the loader's do (ImageError's what()
+  // names the file already).
+  const std::string json_path = "environment.texture: ";
+  std::string where = json_path;
   if (!env.texture.empty()) {
+    const std::filesystem::path file = resolve_asset_path(scene, env.texture);
+    where += file.string() + ": ";
     try {
-      texture = load_texture_cached(resolve_asset_path(scene, env.texture));
+      texture = load_texture_cached(file);
     } catch (const ImageError& e) {
-      throw ImageError(std::string("environment.texture: ") + e.what());
+      throw ImageError(json_path + e.what());
     }
     if (texture->eight_bit())
       converted = to_linear_image(*texture, ColorEncoding::linear);

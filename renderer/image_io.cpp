@@ -565,6 +565,17 @@ ImageInfo probe_image(const std::filesystem::path& path) {
   return probe_bytes(path, bytes, format);
 }
 
+// What every decoder needs first: a non-empty file that stb's int lengths can hold, of a known
+// format, and for PNG intact chunks (check_png_chunks).
+static Format check_before_decoding(const std::filesystem::path& path,
+                                    const std::vector<unsigned char>& bytes) {
+  if (bytes.empty()) fail(path, "file is empty");
+  if (bytes.size() >= static_cast<size_t>(std::numeric_limits<int>::max())) fail(path, "file is too large");
+  const Format format = require_format(path, bytes);
+  if (format == Format::png) check_png_chunks(path, bytes);
+  return format;
+}
+
 // The whole file for a decoder. stb takes an int length, so files of 2 GiB or more are refused
 // up front.
 static std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {
@@ -585,10 +596,7 @@ TextureImage load_texture_image(const std::filesystem::path& path) {
 
 TextureImage load_texture_image_data(const std::vector<unsigned char>& bytes,
                                      const std::filesystem::path& path) {
-  if (bytes.empty()) fail(path, "file is empty");
-  if (bytes.size() >= static_cast<size_t>(std::numeric_limits<int>::max())) fail(path, "file is too large");
-  const Format format = require_format(path, bytes);
-  if (format == Format::png) check_png_chunks(path, bytes);
+  const Format format = check_before_decoding(path, bytes);
   TextureImage texture;
   if (format != Format::openexr) {
     const StbInfo info = stb_info(path, bytes);
@@ -623,11 +631,8 @@ Image to_linear_image(const TextureImage& texture, ColorEncoding encoding) {
 
 Image load_image_data(const std::vector<unsigned char>& bytes, const std::filesystem::path& path,
                       ColorEncoding encoding) {
-  if (bytes.empty()) fail(path, "file is empty");
-  if (bytes.size() >= static_cast<size_t>(std::numeric_limits<int>::max())) fail(path, "file is too large");
-  const Format format = require_format(path, bytes);
+  const Format format = check_before_decoding(path, bytes);
   if (format == Format::openexr) return load_exr(path, bytes);
-  if (format == Format::png) check_png_chunks(path, bytes);
   return load_stb(path, bytes, encoding);
 }
 

@@ -274,9 +274,6 @@ class DuplicateKeySax {
     return path;
   }
   bool start(bool is_array) {
-    // parse_text checks the depth before parsing; this bounds it for any other caller.
-    if (frames_.size() >= size_t(kMaxJsonDepth))
-      fail(file_, "", "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
     frames_.push_back({is_array, 0, {}, {}});
     return true;
   }

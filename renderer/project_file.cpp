@@ -1,7 +1,5 @@
 #include "renderer/project_file.h"
 
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
