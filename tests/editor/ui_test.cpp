@@ -7,14 +7,16 @@
 #include <cstdio>
 #include <fstream>
 
+#include <epoxy/gl.h>
+// epoxy must come before GLFW.
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
 #include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
 
 #include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
 
 #include "editor/editor_frame.h"
-#include "editor/recent_and_recovery.h"
 #include "editor/picking.h"
+#include "editor/recent_and_recovery.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
@@ -150,6 +152,48 @@ TEST_F(UiTest, ViewportAccumulatesAndFillsTheCentre) {
   EXPECT_GT(state_.viewport.pos.x, 0);  // outliner on the left
   EXPECT_LT(state_.viewport.pos.x + state_.viewport.size.x, 800);  // properties on the right
   EXPECT_EQ(state_.viewport.frame.stats.trace_width, (int(state_.viewport.size.x) + 3) / 4);
+}
+
+// The viewport renders after the widgets, at the panel's size of this very frame, and the image
+// ImGui draws is that render: a resized window never shows a stale or stretched frame.
+TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
+  for (int i = 0; i < 2; ++i) frame();
+  for (ImVec2 display : {ImVec2(1000, 640), ImVec2(700, 420), ImVec2(701, 421)}) {
+    ImGui::GetIO().DisplaySize = display;
+    frame();
+    const ViewportView& v = state_.viewport;
+    EXPECT_NEAR(v.pos.x + v.size.x + std::min(state_.right_width, display.x * 0.35f), display.x, 0.5f);
+    const unsigned tex = v.frame.display_texture;
+    ASSERT_NE(tex, 0u);
+    // The texture shown is the one traced at this frame's size (quarter resolution here).
+    int tw = 0, th = 0;
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &tw);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &th);
+    EXPECT_EQ(tw, (int(std::lround(v.size.x)) + 3) / 4) << display.x;
+    EXPECT_EQ(th, (int(std::lround(v.size.y)) + 3) / 4) << display.y;
+    EXPECT_EQ(v.frame.stats.trace_width, tw);
+    // ... and this frame's draw data draws it over exactly the panel.
+    int images = 0;
+    const ImDrawData* data = ImGui::GetDrawData();
+    for (int l = 0; l < data->CmdListsCount; ++l) {
+      const ImDrawList* list = data->CmdLists[l];
+      for (const ImDrawCmd& cmd : list->CmdBuffer) {
+        if (cmd.TextureId != reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex))) continue;
+        ++images;
+        ImVec2 lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
+        for (unsigned i = 0; i < cmd.ElemCount; ++i) {
+          const ImVec2 p = list->VtxBuffer[cmd.VtxOffset + list->IdxBuffer[cmd.IdxOffset + i]].pos;
+          lo = ImVec2(std::min(lo.x, p.x), std::min(lo.y, p.y));
+          hi = ImVec2(std::max(hi.x, p.x), std::max(hi.y, p.y));
+        }
+        EXPECT_NEAR(lo.x, v.pos.x, 0.01f);
+        EXPECT_NEAR(lo.y, v.pos.y, 0.01f);
+        EXPECT_NEAR(hi.x, v.pos.x + v.size.x, 0.01f);
+        EXPECT_NEAR(hi.y, v.pos.y + v.size.y, 0.01f);
+      }
+    }
+    EXPECT_EQ(images, 1) << display.x;
+  }
 }
 
 TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
