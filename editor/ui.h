@@ -128,7 +128,7 @@ struct EditorState {
   ThumbnailCache thumbnails;
 };
 
-// The whole UI for one frame (between ImGui::NewFrame and ImGui::Render).
+// Step 1 of editor_frame: every panel's input and widgets, in order. Renders nothing.
 void draw_editor_ui(Document& doc, EditorState& state);
 
 void handle_shortcuts(Document& doc, EditorState& state);

@@ -1,7 +1,6 @@
 #include "editor/viewport_renderer.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <epoxy/gl.h>
 
