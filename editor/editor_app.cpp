@@ -13,8 +13,9 @@
 #include <imgui_impl_opengl3.h>
 #include <unistd.h>
 
-#include "editor/app_state.h"
+#include "editor/editor_frame.h"
 #include "editor/file_dialogs.h"
+#include "editor/recent_and_recovery.h"
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
 #include "renderer/image.h"
@@ -27,16 +28,6 @@
 namespace glint {
 namespace fs = std::filesystem;
 namespace {
-
-const char* const kUsage =
-    "usage: glint [PROJECT.glint] [--size WxH] [--frames N] [--screenshot FILE.png [--spp N]]\n"
-    "\n"
-    "Opens the editor (a window: needs a display, e.g. xvfb-run on a server).\n"
-    "  --size WxH           window size in screen coordinates (default 1280x800)\n"
-    "  --frames N           close after N frames, dropping unsaved changes (for scripts)\n"
-    "  --screenshot FILE    render, save a PNG of the whole window and exit: after --frames N\n"
-    "                       (default 60), or with --spp N once the viewport has N samples per\n"
-    "                       pixel; such runs neither offer a crash recovery nor autosave\n";
 
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "glint: GLFW error %d: %s\n", code, text); }
 
@@ -65,9 +56,182 @@ fs::path executable_dir() {
   return ec ? fs::path() : exe.parent_path();
 }
 
-}  // namespace
+struct Windows {
+  GLFWwindow* main = nullptr;
+  GLFWwindow* worker = nullptr;  // hidden, sharing main's objects; null: none could be made
+};
 
-const char* editor_usage() { return kUsage; }
+// The editor's window (OpenGL 4.5 core, current on this thread) and a hidden window whose
+// context shares its objects, for the thread that builds specialised trace programs
+// (renderer/program_worker.h). Without that one they are built on the UI thread.
+std::optional<Windows> open_windows(const EditorOptions& options, bool screenshot_mode) {
+  glfwSetErrorCallback(glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr, "glint: cannot open a window (no display?); `glint render` works without one\n");
+    return std::nullopt;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // HiDPI: content scale applies to the size
+  Windows w;
+  w.main = glfwCreateWindow(options.width, options.height, "Glint", nullptr, nullptr);
+  if (!w.main) {
+    std::fprintf(stderr, "glint: cannot create an OpenGL 4.5 core window\n");
+    glfwTerminate();
+    return std::nullopt;
+  }
+  glfwMakeContextCurrent(w.main);
+  glfwSwapInterval(screenshot_mode ? 0 : 1);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
+  w.worker = glfwCreateWindow(1, 1, "Glint shader worker", nullptr, w.main);
+  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
+  if (!w.worker)
+    std::fprintf(stderr, "glint: no second OpenGL context; shader variants compile on the UI thread\n");
+  return w;
+}
+
+void close_windows(const Windows& w) {
+  if (w.worker) glfwDestroyWindow(w.worker);
+  glfwDestroyWindow(w.main);
+  glfwTerminate();
+}
+
+void start_imgui(GLFWwindow* window) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // fixed layout: nothing to remember
+  ImGui::StyleColorsDark();
+  float xscale = 1, yscale = 1;
+  glfwGetWindowContentScale(window, &xscale, &yscale);
+  if (xscale > 1.01f) {  // larger text on HiDPI screens where GLFW does not scale framebuffers
+    ImGui::GetStyle().ScaleAllSizes(xscale);
+    io.FontGlobalScale = xscale;
+  }
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 450");
+}
+
+void stop_imgui() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+// The state at start: file dialogs, recent files, the examples folder, the command line's
+// project, and (except in screenshot runs, which leave the user's state alone) the recovery a
+// crashed run left, offered by draw_recovery_offer, and this run's autosave. Returns false when
+// a screenshot run's project does not open.
+bool start_session(Document& doc, EditorState& state, const EditorOptions& options, GLFWwindow* worker_window) {
+  const bool screenshot_mode = !options.screenshot.empty();
+  bool ok = true;
+  state.flow.native_dialogs = native_file_dialogs_available();
+  state.flow.recent_files = load_recent_files();
+  state.flow.on_opened_or_saved = [&state](const fs::path& f) { state.flow.recent_files = add_recent_file(f); };
+  state.flow.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
+  if (!options.project.empty() && !open_document(doc, state, options.project)) {
+    std::fprintf(stderr, "glint: %s\n", state.messages.error.c_str());
+    if (screenshot_mode) ok = false;
+  }
+  if (!screenshot_mode) {
+    state.recovery = find_recovery();
+    if (state.recovery)
+      std::fprintf(stderr, "glint: offering the unsaved work of a run that did not exit cleanly (%s)\n",
+                   state.recovery->file.string().c_str());
+    state.autosave.emplace(fs::path(), 30);
+  }
+  if (worker_window)
+    state.shader_worker = std::make_shared<ProgramWorker>(SharedContextHooks{
+        [worker_window] { glfwMakeContextCurrent(worker_window); },
+        [] { glfwMakeContextCurrent(nullptr); }});
+  return ok;
+}
+
+// Null (and a message) when the trace shader cannot be built.
+std::unique_ptr<ViewportRenderer> make_viewport(const EditorState& state) {
+  try {
+    GpuRendererOptions renderer_options;
+    renderer_options.worker = state.shader_worker;
+    return std::make_unique<ViewportRenderer>(renderer_options);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return nullptr;
+  }
+}
+
+// Clean exit: the autosave's file goes; GL objects go while the context exists; the worker's
+// thread is joined before its window goes.
+void end_session(EditorState& state, std::unique_ptr<ViewportRenderer>& viewport) {
+  if (state.autosave) state.autosave->finish();
+  state.thumbnails.clear();
+  state.export_ui.job.reset();
+  viewport.reset();
+  state.shader_worker.reset();
+}
+
+enum class Poll { frame, minimised, stop };
+
+// Window events. A close request becomes the quit action (behind the unsaved-changes guard);
+// a screenshot run just stops. `fb_w`, `fb_h`: the framebuffer's size.
+Poll poll_window(GLFWwindow* window, Document& doc, EditorState& state, bool screenshot_mode, int& fb_w, int& fb_h) {
+  glfwPollEvents();
+  if (glfwWindowShouldClose(window)) {
+    glfwSetWindowShouldClose(window, GLFW_FALSE);
+    if (screenshot_mode) return Poll::stop;
+    request_action(doc, state, DocAction::quit);
+  }
+  glfwGetFramebufferSize(window, &fb_w, &fb_h);
+  if (fb_w <= 0 || fb_h <= 0) {
+    glfwWaitEventsTimeout(0.1);
+    return Poll::minimised;
+  }
+  return Poll::frame;
+}
+
+void begin_imgui_frame() {
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+}
+
+// ImGui's draw data (the viewport image and the panels) into the window's back buffer.
+void draw_imgui(int fb_w, int fb_h) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, fb_w, fb_h);
+  glClearColor(0.1f, 0.1f, 0.11f, 1);
+  glClear(GL_COLOR_BUFFER_BIT);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+bool screenshot_due(const EditorOptions& options, int frame, const EditorState& state) {
+  return (options.frames && frame >= options.frames) ||
+         (options.spp && state.viewport.frame.stats.spp >= options.spp);
+}
+
+// Saves the back buffer; returns the exit code.
+int save_screenshot(const EditorOptions& options, int fb_w, int fb_h, int frame, const FrameStats& stats) {
+  try {
+    save_window_png(options.screenshot, fb_w, fb_h);
+    std::fprintf(stderr, "glint: wrote %s (%dx%d, %d frames, %lld spp, %.1f ms/frame)\n",
+                 options.screenshot.string().c_str(), fb_w, fb_h, frame, static_cast<long long>(stats.spp),
+                 stats.ms_per_frame);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "glint: %s\n", e.what());
+    return 1;
+  }
+}
+
+void update_title(GLFWwindow* window, const Document& doc, std::string& title) {
+  if (std::string t = doc.window_title(); t != title) {
+    title = t;
+    glfwSetWindowTitle(window, title.c_str());
+  }
+}
+
+}  // namespace
 
 std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::string& error) {
   EditorOptions o;
@@ -139,148 +303,43 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
 
 int run_editor(const EditorOptions& options) {
   const bool screenshot_mode = !options.screenshot.empty();
-  glfwSetErrorCallback(glfw_error);
-  if (!glfwInit()) {
-    std::fprintf(stderr, "glint: cannot open a window (no display?); `glint render` works without one\n");
-    return 1;
-  }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // HiDPI: content scale applies to the size
-  GLFWwindow* window = glfwCreateWindow(options.width, options.height, "Glint", nullptr, nullptr);
-  if (!window) {
-    std::fprintf(stderr, "glint: cannot create an OpenGL 4.5 core window\n");
-    glfwTerminate();
-    return 1;
-  }
-  glfwMakeContextCurrent(window);
-  glfwSwapInterval(screenshot_mode ? 0 : 1);
-  // A hidden window whose context shares the main one's objects, for the thread that builds
-  // specialised trace programs (renderer/program_worker.h). Without it they are built here.
-  glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE);
-  GLFWwindow* worker_window = glfwCreateWindow(1, 1, "Glint shader worker", nullptr, window);
-  glfwWindowHint(GLFW_VISIBLE, GLFW_TRUE);
-  if (!worker_window)
-    std::fprintf(stderr, "glint: no second OpenGL context; shader variants compile on the UI thread\n");
-
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;  // fixed layout: nothing to remember
-  ImGui::StyleColorsDark();
-  float xscale = 1, yscale = 1;
-  glfwGetWindowContentScale(window, &xscale, &yscale);
-  if (xscale > 1.01f) {  // larger text on HiDPI screens where GLFW does not scale framebuffers
-    ImGui::GetStyle().ScaleAllSizes(xscale);
-    io.FontGlobalScale = xscale;
-  }
-  ImGui_ImplGlfw_InitForOpenGL(window, true);
-  ImGui_ImplOpenGL3_Init("#version 450");
-
+  const std::optional<Windows> windows = open_windows(options, screenshot_mode);
+  if (!windows) return 1;
+  start_imgui(windows->main);
   int exit_code = 0;
   {
     Document doc;
     EditorState state;
-    state.native_dialogs = native_file_dialogs_available();
-    state.recent_files = load_recent_files();
-    state.on_opened_or_saved = [&state](const fs::path& f) { state.recent_files = add_recent_file(f); };
-    state.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
-
-    if (!options.project.empty() && !open_document(doc, state, options.project)) {
-      std::fprintf(stderr, "glint: %s\n", state.error.c_str());
-      if (screenshot_mode) exit_code = 1;
-    }
-    // A recovery left by a crashed run is offered (draw_recovery_offer) and this run autosaves,
-    // except in screenshot runs, which leave the user's state alone.
-    if (!screenshot_mode) {
-      state.recovery = find_recovery();
-      if (state.recovery)
-        std::fprintf(stderr, "glint: offering the unsaved work of a run that did not exit cleanly (%s)\n",
-                     state.recovery->file.string().c_str());
-      state.autosave.emplace(fs::path(), 30);
-    }
-
-    if (worker_window)
-      state.shader_worker = std::make_shared<ProgramWorker>(SharedContextHooks{
-          [worker_window] { glfwMakeContextCurrent(worker_window); },
-          [] { glfwMakeContextCurrent(nullptr); }});
-    std::unique_ptr<ViewportRenderer> viewport;
-    try {
-      GpuRendererOptions renderer_options;
-      renderer_options.worker = state.shader_worker;
-      viewport = std::make_unique<ViewportRenderer>(renderer_options);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "glint: %s\n", e.what());
-      exit_code = 1;
-    }
-    if (viewport) state.render_viewport = [&](Document& d, EditorState& s) { viewport->render(d, s); };
+    if (!start_session(doc, state, options, windows->worker)) exit_code = 1;
+    std::unique_ptr<ViewportRenderer> viewport = make_viewport(state);
+    if (!viewport) exit_code = 1;
 
     int frame = 0;
     std::string title;
-    while (viewport && exit_code == 0 && !state.quit_approved) {
-      glfwPollEvents();
-      if (glfwWindowShouldClose(window)) {
-        glfwSetWindowShouldClose(window, GLFW_FALSE);
-        if (screenshot_mode) break;
-        request_action(doc, state, DocAction::quit);
-      }
+    while (exit_code == 0 && !state.flow.quit_approved) {
       int fb_w = 0, fb_h = 0;
-      glfwGetFramebufferSize(window, &fb_w, &fb_h);
-      if (fb_w <= 0 || fb_h <= 0) {  // minimised
-        glfwWaitEventsTimeout(0.1);
-        continue;
-      }
-      viewport->set_framebuffer_size(fb_w, fb_h);
-
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      draw_editor_ui(doc, state);
-      doc.end_frame(ImGui::IsAnyItemActive() || state.interacting);
-      ImGui::Render();
-
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      glViewport(0, 0, fb_w, fb_h);
-      glClearColor(0.1f, 0.1f, 0.11f, 1);
-      glClear(GL_COLOR_BUFFER_BIT);
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
+      const Poll poll = poll_window(windows->main, doc, state, screenshot_mode, fb_w, fb_h);
+      if (poll == Poll::stop) break;
+      if (poll == Poll::minimised) continue;
+      begin_imgui_frame();
+      // Widgets edit the document, the viewport renders it, the export steps, undo is derived,
+      // ImGui's draw data is built (editor_frame.h); then it is drawn.
+      editor_frame(doc, state, *viewport);
+      draw_imgui(fb_w, fb_h);
       ++frame;
-      if (screenshot_mode && ((options.frames && frame >= options.frames) ||
-                              (options.spp && state.stats.spp >= options.spp))) {
-        try {
-          save_window_png(options.screenshot, fb_w, fb_h);
-          std::fprintf(stderr, "glint: wrote %s (%dx%d, %d frames, %lld spp, %.1f ms/frame)\n",
-                       options.screenshot.string().c_str(), fb_w, fb_h, frame,
-                       static_cast<long long>(state.stats.spp), state.stats.ms_per_frame);
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "glint: %s\n", e.what());
-          exit_code = 1;
-        }
+      if (screenshot_mode && screenshot_due(options, frame, state)) {
+        exit_code = save_screenshot(options, fb_w, fb_h, frame, state.viewport.frame.stats);
         break;
       }
-      glfwSwapBuffers(window);
-      if (std::string t = doc.window_title(); t != title) {
-        title = t;
-        glfwSetWindowTitle(window, title.c_str());
-      }
+      glfwSwapBuffers(windows->main);
+      update_title(windows->main, doc, title);
       if (state.autosave) state.autosave->update(doc, glfwGetTime());
       if (!screenshot_mode && options.frames && frame >= options.frames) break;
     }
-    if (state.autosave) state.autosave->finish();
-    state.thumbnails.clear();
-    state.export_job.reset();
-    viewport.reset();
-    state.shader_worker.reset();  // joins the thread before its window goes
+    end_session(state, viewport);
   }
-  ImGui_ImplOpenGL3_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
-  if (worker_window) glfwDestroyWindow(worker_window);
-  glfwDestroyWindow(window);
-  glfwTerminate();
+  stop_imgui();
+  close_windows(*windows);
   return exit_code;
 }
 

@@ -22,6 +22,4 @@ int run_editor(const EditorOptions& options);
 // `error` on bad arguments.
 std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::string& error);
 
-const char* editor_usage();
-
 }  // namespace glint

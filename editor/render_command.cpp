@@ -314,8 +314,6 @@ class LogFile {
 
 }  // namespace
 
-const char* render_command_usage() { return kUsage; }
-
 int run_render_command(int argc, char** argv) {
   for (int i = 0; i < argc; ++i)
     if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {

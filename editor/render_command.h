@@ -6,6 +6,4 @@ namespace glint {
 // argv excludes "glint" and "render". Returns the process exit code.
 int run_render_command(int argc, char** argv);
 
-const char* render_command_usage();
-
 }  // namespace glint

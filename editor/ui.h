@@ -1,11 +1,12 @@
 // The editor's panels. Each takes the Document and the EditorState and needs only an ImGui
 // context (and a current GL context for thumbnails): no GLFW, so tests drive them headlessly.
 //
-// One frame: draw_editor_ui() lays out fixed panels (no docking) and runs them in order:
-// shortcuts, menu bar, outliner, properties, status bar, the viewport (which handles its mouse
-// input, then calls state.render_viewport: sync, trace, tonemap, and shows the display
-// texture), the export dialog, the document modals, and last the recovery offer. The caller
-// then ends the frame with doc.end_frame(ImGui::IsAnyItemActive() || state.interacting).
+// draw_editor_ui() is the first step of a frame (editor/editor_frame.h): it lays out fixed
+// panels (no docking) and runs them in order: shortcuts, menu bar, outliner, properties, status
+// bar, the viewport's mouse input (selection, gizmo, camera), the export dialog, the document
+// modals, and last the recovery offer. It edits the document and this state; it does not
+// render. The viewport image it shows is the one show_viewport_image() puts under the panels
+// once the viewport has rendered the edited scene.
 #pragma once
 
 #include <filesystem>
@@ -18,11 +19,12 @@
 #include <glm/glm.hpp>
 #include <imgui.h>
 
-#include "editor/app_state.h"
 #include "editor/document.h"
 #include "editor/export_job.h"
-#include "renderer/render_options.h"
+#include "editor/recent_and_recovery.h"
 #include "editor/thumbnails.h"
+#include "editor/viewport_frame.h"
+#include "renderer/render_options.h"
 
 namespace glint {
 
@@ -32,38 +34,24 @@ class ProgramWorker;
 enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output };
 // Actions behind the unsaved-changes guard.
 enum class DocAction { none, new_document, open_dialog, open_path, quit };
-enum class ViewportResolution { automatic, full, half, quarter };
 
-struct FrameStats {
-  int64_t spp = 0;
-  double spp_per_second = 0;
-  double ms_per_frame = 0;
-  int trace_width = 0, trace_height = 0;
-  std::string gl_renderer;
-  std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
-};
-
-struct EditorState {
-  // Layout, in ImGui units (points), set by draw_editor_ui each frame.
-  float left_width = 270, right_width = 340;
-  ImVec2 viewport_pos{0, 0}, viewport_size{1, 1};
+// The viewport panel: where it is this frame, how it previews, and what it shows.
+struct ViewportView {
+  // In ImGui units (points), set by draw_editor_ui each frame from the window's size.
+  ImVec2 pos{0, 0}, size{1, 1};
   // Trace pixels per ImGui unit (io.DisplayFramebufferScale): HiDPI traces at framebuffer pixels.
   float framebuffer_scale = 1;
-
-  // The viewport image: called inside the viewport panel after its input was handled.
-  std::function<void(Document&, EditorState&)> render_viewport;
-  unsigned display_texture = 0;
-  FrameStats stats;
   ViewportResolution resolution = ViewportResolution::automatic;
   // How the viewport and exports sample (not saved in the project; see render_options.h).
   RenderOptions estimator;
-  // Builds specialised trace programs off the UI thread for the viewport and exports (null:
-  // they are built on the UI thread; see renderer/program_worker.h).
-  std::shared_ptr<ProgramWorker> shader_worker;
+  // This frame's render once the viewport has rendered (before: the last frame's).
+  ViewportFrame frame;
+};
 
-  // Viewport tools and drags.
+// The viewport's tools and the drags in progress.
+struct ViewportTools {
   bool focus_tool = false;   // a click sets the focus distance instead of selecting
-  bool interacting = false;  // a gizmo or camera drag is in progress (one undo step)
+  bool interacting = false;  // a gizmo, camera or fly gesture is in progress (one undo step)
   int gizmo_axis = -1;       // axis being dragged, -1 none
   int gizmo_hover = -1;
   glm::vec3 gizmo_start_center{0};
@@ -73,8 +61,10 @@ struct EditorState {
   int camera_button = -1;          // mouse button driving the camera, -1 none
   bool camera_moved = false;
   ImVec2 press_pos{0, 0};
+};
 
-  // Documents.
+// Opening, saving and choosing files: the unsaved-changes guard, the typed-path prompt.
+struct DocumentFlow {
   DocAction pending = DocAction::none;
   std::filesystem::path pending_path;
   bool open_unsaved_prompt = false;
@@ -93,33 +83,52 @@ struct EditorState {
   } prompt;
   int slot_material = -1;  // the texture slot a chosen file goes to
   int slot_index = 0;      // 0 colour, 1 emission, 2 roughness
+};
 
-  // Messages: a transient line in the status bar and a modal for errors.
+// A transient line in the status bar and a modal for errors.
+struct Messages {
   std::string message;
   double message_until = 0;
   std::string error;
   bool open_error = false;
   bool error_enter_released = false;  // Enter closes the error box only after a release in it
+};
+
+// The export dialog and the job it started.
+struct ExportUi {
+  bool show = false;
+  ExportSettings settings;
+  std::unique_ptr<ExportJob> job;
+  std::string message;
+};
+
+// Renaming in the outliner.
+struct Renaming {
+  Selection item;
+  char buffer[256] = {};
+};
+
+struct EditorState {
+  float left_width = 270, right_width = 340;  // side panels, in ImGui units
+  ViewportView viewport;
+  ViewportTools tools;
+  DocumentFlow flow;
+  Messages messages;
+  ExportUi export_ui;
+  Renaming renaming;
 
   // Crash recovery: the work a crashed run left, offered once the panels exist (reset when
   // answered), and this run's autosave (none in tests and screenshot runs).
   std::optional<Recovery> recovery;
   std::optional<Autosave> autosave;
 
-  // Export.
-  bool show_export = false;
-  ExportSettings export_settings;
-  std::unique_ptr<ExportJob> export_job;
-  std::string export_message;
-
-  // Renaming in the outliner.
-  Selection renaming;
-  char rename_buffer[256] = {};
-
+  // Builds specialised trace programs off the UI thread for the viewport and exports (null:
+  // they are built on the UI thread; see renderer/program_worker.h).
+  std::shared_ptr<ProgramWorker> shader_worker;
   ThumbnailCache thumbnails;
 };
 
-// The whole UI for one frame (between ImGui::NewFrame and ImGui::Render).
+// Step 1 of editor_frame: every panel's input and widgets, in order. Renders nothing.
 void draw_editor_ui(Document& doc, EditorState& state);
 
 void handle_shortcuts(Document& doc, EditorState& state);
@@ -130,7 +139,14 @@ void draw_status_bar(Document& doc, EditorState& state);
 void draw_document_modals(Document& doc, EditorState& state);
 void draw_recovery_offer(Document& doc, EditorState& state);
 void draw_export_dialog(Document& doc, EditorState& state);
+// The viewport's mouse input and overlays (gizmo, focus tool); the image goes under it.
 void draw_viewport(Document& doc, EditorState& state);
+// Puts this frame's viewport image (and why it is not updating, if so) under the panels.
+void show_viewport_image(const ViewportView& view);
+// The viewport's request for this frame: the panel's size in framebuffer pixels; no tracing
+// while an export runs.
+ViewportRequest viewport_request(const EditorState& state);
+bool export_running(const EditorState& state);
 void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
 
 // The status bar's line, piece by piece: the frame figures, then an autosave failure (shown

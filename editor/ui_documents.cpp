@@ -39,7 +39,7 @@ void perform(Document& doc, EditorState& state, DocAction action, const fs::path
     case DocAction::new_document: new_document(doc, state); break;
     case DocAction::open_dialog: choose_file(doc, state, FilePurpose::open_project); break;
     case DocAction::open_path: open_document(doc, state, path); break;
-    case DocAction::quit: state.quit_approved = true; break;
+    case DocAction::quit: state.flow.quit_approved = true; break;
     case DocAction::none: break;
   }
 }
@@ -67,20 +67,20 @@ DialogSpec dialog_spec(FilePurpose purpose) {
 }  // namespace
 
 void show_error(EditorState& state, const std::string& message) {
-  state.error = message;
-  state.open_error = true;
+  state.messages.error = message;
+  state.messages.open_error = true;
 }
 
 void show_message(EditorState& state, const std::string& message) {
-  state.message = message;
-  state.message_until = ImGui::GetTime() + 4.0;
+  state.messages.message = message;
+  state.messages.message_until = ImGui::GetTime() + 4.0;
 }
 
 void request_action(Document& doc, EditorState& state, DocAction action, fs::path path) {
   if (doc.dirty()) {
-    state.pending = action;
-    state.pending_path = std::move(path);
-    state.open_unsaved_prompt = true;
+    state.flow.pending = action;
+    state.flow.pending_path = std::move(path);
+    state.flow.open_unsaved_prompt = true;
     return;
   }
   perform(doc, state, action, path);
@@ -97,7 +97,7 @@ bool open_document(Document& doc, EditorState& state, const fs::path& file) {
     Scene scene = load_project(file);
     doc = Document(std::move(scene), fs::absolute(file));
     state.thumbnails.clear();
-    if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+    if (state.flow.on_opened_or_saved) state.flow.on_opened_or_saved(doc.path());
     show_message(state, "Opened " + file.string());
     return true;
   } catch (const std::exception& e) {
@@ -113,7 +113,7 @@ bool save_document(Document& doc, EditorState& state, bool save_as) {
   }
   try {
     doc.save(doc.path());
-    if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+    if (state.flow.on_opened_or_saved) state.flow.on_opened_or_saved(doc.path());
     show_message(state, "Saved " + doc.path().string());
     return true;
   } catch (const std::exception& e) {
@@ -125,18 +125,18 @@ bool save_document(Document& doc, EditorState& state, bool save_as) {
 void choose_file(Document& doc, EditorState& state, FilePurpose purpose) {
   DialogSpec spec = dialog_spec(purpose);
   std::string start = doc.path().empty() ? fs::current_path().string() + "/" : doc.path().string();
-  if (purpose == FilePurpose::export_output) start = state.export_settings.output.string();
-  if (state.native_dialogs) {
+  if (purpose == FilePurpose::export_output) start = state.export_ui.settings.output.string();
+  if (state.flow.native_dialogs) {
     auto chosen = spec.save ? native_save_dialog(spec.title, start, spec.filters, spec.description)
                             : native_open_dialog(spec.title, start, spec.filters, spec.description);
     if (chosen) apply_chosen_file(doc, state, purpose, *chosen);
-    else if (purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+    else if (purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
     return;
   }
-  state.prompt.request_open = true;
-  state.prompt.purpose = purpose;
-  state.prompt.title = spec.title;
-  std::snprintf(state.prompt.buffer, sizeof state.prompt.buffer, "%s", start.c_str());
+  state.flow.prompt.request_open = true;
+  state.flow.prompt.purpose = purpose;
+  state.flow.prompt.title = spec.title;
+  std::snprintf(state.flow.prompt.buffer, sizeof state.flow.prompt.buffer, "%s", start.c_str());
 }
 
 void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, const std::string& file) {
@@ -147,12 +147,12 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
       case FilePurpose::save_project_as: {
         if (path.extension().empty()) path += ".glint";
         doc.save(path);
-        if (state.on_opened_or_saved) state.on_opened_or_saved(doc.path());
+        if (state.flow.on_opened_or_saved) state.flow.on_opened_or_saved(doc.path());
         show_message(state, "Saved " + doc.path().string());
         // A save that was asked for by the unsaved-changes prompt continues its action.
-        DocAction next = state.pending;
-        state.pending = DocAction::none;
-        perform(doc, state, next, state.pending_path);
+        DocAction next = state.flow.pending;
+        state.flow.pending = DocAction::none;
+        perform(doc, state, next, state.flow.pending_path);
         break;
       }
       case FilePurpose::add_texture:
@@ -163,11 +163,11 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
           refuse_image_problems(candidate);
         }
         int t = add_texture(doc.scene, path);
-        if (purpose == FilePurpose::texture_slot && state.slot_material >= 0 &&
-            state.slot_material < static_cast<int>(doc.scene.materials.size())) {
-          Material& m = doc.scene.materials[state.slot_material];
-          std::string& slot = state.slot_index == 0 ? m.color_texture
-                              : state.slot_index == 1 ? m.emission_texture : m.roughness_texture;
+        if (purpose == FilePurpose::texture_slot && state.flow.slot_material >= 0 &&
+            state.flow.slot_material < static_cast<int>(doc.scene.materials.size())) {
+          Material& m = doc.scene.materials[state.flow.slot_material];
+          std::string& slot = state.flow.slot_index == 0 ? m.color_texture
+                              : state.flow.slot_index == 1 ? m.emission_texture : m.roughness_texture;
           slot = doc.scene.textures[t].name;
         }
         break;
@@ -182,18 +182,18 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
         doc.scene.environment.texture = candidate.environment.texture;
         break;
       }
-      case FilePurpose::export_output: state.export_settings.output = path; break;
+      case FilePurpose::export_output: state.export_ui.settings.output = path; break;
     }
   } catch (const std::exception& e) {
-    if (purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+    if (purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
     show_error(state, e.what());
   }
 }
 
 void draw_document_modals(Document& doc, EditorState& state) {
-  if (state.open_unsaved_prompt) {
+  if (state.flow.open_unsaved_prompt) {
     ImGui::OpenPopup(kUnsavedPopup);
-    state.open_unsaved_prompt = false;
+    state.flow.open_unsaved_prompt = false;
   }
   if (ImGui::BeginPopupModal(kUnsavedPopup, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::Text("%s has unsaved changes.", doc.display_name().c_str());
@@ -204,68 +204,68 @@ void draw_document_modals(Document& doc, EditorState& state) {
       if (doc.path().empty()) {
         choose_file(doc, state, FilePurpose::save_project_as);  // continues the action when saved
       } else if (save_document(doc, state, false)) {
-        DocAction next = state.pending;
-        state.pending = DocAction::none;
-        perform(doc, state, next, state.pending_path);
+        DocAction next = state.flow.pending;
+        state.flow.pending = DocAction::none;
+        perform(doc, state, next, state.flow.pending_path);
       } else {
-        state.pending = DocAction::none;
+        state.flow.pending = DocAction::none;
       }
     }
     ImGui::SameLine();
     if (ImGui::Button("Discard", ImVec2(90, 0))) {
       ImGui::CloseCurrentPopup();
-      DocAction next = state.pending;
-      state.pending = DocAction::none;
-      perform(doc, state, next, state.pending_path);
+      DocAction next = state.flow.pending;
+      state.flow.pending = DocAction::none;
+      perform(doc, state, next, state.flow.pending_path);
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
       ImGui::CloseCurrentPopup();
-      state.pending = DocAction::none;
+      state.flow.pending = DocAction::none;
     }
     ImGui::EndPopup();
   }
 
-  if (state.prompt.request_open) {
+  if (state.flow.prompt.request_open) {
     ImGui::OpenPopup(kPathPopup);
-    state.prompt.request_open = false;
+    state.flow.prompt.request_open = false;
   }
   ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(kPathPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
-    ImGui::TextUnformatted(state.prompt.title.c_str());
+    ImGui::TextUnformatted(state.flow.prompt.title.c_str());
     ImGui::TextDisabled("No file dialog is available here: type the path.");
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
     ImGui::SetNextItemWidth(-1);
-    bool enter = ImGui::InputText("##path", state.prompt.buffer, sizeof state.prompt.buffer,
+    bool enter = ImGui::InputText("##path", state.flow.prompt.buffer, sizeof state.flow.prompt.buffer,
                                   ImGuiInputTextFlags_EnterReturnsTrue);
     if (ImGui::Button("OK", ImVec2(90, 0)) || enter) {
       ImGui::CloseCurrentPopup();
-      std::string chosen = state.prompt.buffer;
-      if (!chosen.empty()) apply_chosen_file(doc, state, state.prompt.purpose, chosen);
+      std::string chosen = state.flow.prompt.buffer;
+      if (!chosen.empty()) apply_chosen_file(doc, state, state.flow.prompt.purpose, chosen);
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
       ImGui::CloseCurrentPopup();
-      if (state.prompt.purpose == FilePurpose::save_project_as) state.pending = DocAction::none;
+      if (state.flow.prompt.purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
     }
     ImGui::EndPopup();
   }
 
-  if (state.open_error) {
+  if (state.messages.open_error) {
     ImGui::OpenPopup(kErrorPopup);
-    state.open_error = false;
-    state.error_enter_released = false;
+    state.messages.open_error = false;
+    state.messages.error_enter_released = false;
   }
   ImGui::SetNextWindowSize(ImVec2(520, 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(kErrorPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::PushTextWrapPos(0);
-    ImGui::TextUnformatted(state.error.c_str());
+    ImGui::TextUnformatted(state.messages.error.c_str());
     ImGui::PopTextWrapPos();
     // The Enter that confirmed a typed path opens this box in the same frame (and may repeat
     // while held): only a press that follows a release closes it.
     const int enter = ImGui::GetKeyIndex(ImGuiKey_Enter);
-    const bool enter_closes = state.error_enter_released && ImGui::IsKeyPressed(enter, false);
-    if (!ImGui::IsKeyDown(enter)) state.error_enter_released = true;
+    const bool enter_closes = state.messages.error_enter_released && ImGui::IsKeyPressed(enter, false);
+    if (!ImGui::IsKeyDown(enter)) state.messages.error_enter_released = true;
     if (ImGui::Button("OK", ImVec2(90, 0)) || enter_closes) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
@@ -274,8 +274,8 @@ void draw_document_modals(Document& doc, EditorState& state) {
 fs::path example_project(const EditorState& state, int number) {
   static const char* const kExamples[] = {"textured_spheres", "emissive_mirror_glass",
                                           "glass_glossy_checker", "roughness_ladder"};
-  if (number < 1 || number > 4 || state.projects_dir.empty()) return {};
-  return state.projects_dir / (std::string(kExamples[number - 1]) + ".glint");
+  if (number < 1 || number > 4 || state.flow.projects_dir.empty()) return {};
+  return state.flow.projects_dir / (std::string(kExamples[number - 1]) + ".glint");
 }
 
 fs::path find_projects_dir(const std::vector<fs::path>& starts) {

@@ -6,25 +6,29 @@
 
 namespace glint {
 
+bool export_running(const EditorState& state) {
+  return state.export_ui.job && state.export_ui.job->state() == ExportJob::State::running;
+}
+
 void step_export(EditorState& state, double slice_seconds) {
-  if (!state.export_job || state.export_job->state() != ExportJob::State::running) return;
-  state.export_job->step(slice_seconds);
-  switch (state.export_job->state()) {
+  if (!export_running(state)) return;
+  state.export_ui.job->step(slice_seconds);
+  switch (state.export_ui.job->state()) {
     case ExportJob::State::done:
-      state.export_message = "Wrote " + state.export_job->settings().output.string();
-      show_message(state, state.export_message);
+      state.export_ui.message = "Wrote " + state.export_ui.job->settings().output.string();
+      show_message(state, state.export_ui.message);
       break;
     case ExportJob::State::failed:
-      state.export_message = "Export failed: " + state.export_job->error();
-      show_error(state, state.export_message);
+      state.export_ui.message = "Export failed: " + state.export_ui.job->error();
+      show_error(state, state.export_ui.message);
       break;
     default: break;
   }
 }
 
 void draw_export_dialog(Document& doc, EditorState& state) {
-  if (!state.show_export) return;
-  ExportSettings& s = state.export_settings;
+  if (!state.export_ui.show) return;
+  ExportSettings& s = state.export_ui.settings;
   if (s.output.empty()) {
     // A first guess beside the project, named after it.
     auto dir = doc.path().empty() ? std::filesystem::current_path() : doc.path().parent_path();
@@ -35,11 +39,11 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (!ImGui::Begin("Export render", &state.show_export, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
+  if (!ImGui::Begin("Export render", &state.export_ui.show, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
     ImGui::End();
     return;
   }
-  const bool running = state.export_job && state.export_job->state() == ExportJob::State::running;
+  const bool running = export_running(state);
   ImGui::BeginDisabled(running);
   ImGui::PushItemWidth(-130);
   int size[2] = {s.width, s.height};
@@ -53,7 +57,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   }
   ImGui::SameLine();
   if (ImGui::SmallButton("Viewport aspect")) {
-    s.height = std::max(1, int(s.width * state.viewport_size.y / std::max(1.0f, state.viewport_size.x) + 0.5f));
+    s.height = std::max(1, int(s.width * state.viewport.size.y / std::max(1.0f, state.viewport.size.x) + 0.5f));
   }
   int budget = s.use_time ? 1 : 0;
   ImGui::RadioButton("Samples", &budget, 0);
@@ -84,28 +88,28 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   if (!problem.empty() && !running) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", problem.c_str());
   ImGui::Separator();
   if (running) {
-    ExportJob& job = *state.export_job;
+    ExportJob& job = *state.export_ui.job;
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "%lld spp, %.1f s", static_cast<long long>(job.samples()),
                   job.elapsed_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
     if (ImGui::Button("Cancel", ImVec2(120, 0))) {
       job.cancel();
-      state.export_message = "Export cancelled";
+      state.export_ui.message = "Export cancelled";
     }
   } else {
     ImGui::BeginDisabled(!problem.empty());
     if (ImGui::Button("Render", ImVec2(120, 0))) {
       try {
-        s.estimator = state.estimator;
-        state.export_job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker);
-        state.export_message.clear();
+        s.estimator = state.viewport.estimator;
+        state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker);
+        state.export_ui.message.clear();
       } catch (const std::exception& e) {
         show_error(state, std::string("Cannot export: ") + e.what());
       }
     }
     ImGui::EndDisabled();
-    if (!state.export_message.empty()) ImGui::TextWrapped("%s", state.export_message.c_str());
+    if (!state.export_ui.message.empty()) ImGui::TextWrapped("%s", state.export_ui.message.c_str());
   }
   ImGui::End();
 }

@@ -13,22 +13,22 @@ constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFl
 }  // namespace
 
 std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
-  const FrameStats& s = state.stats;
+  const FrameStats& s = state.viewport.frame.stats;
   char text[512];
   int n = std::snprintf(text, sizeof text, "%lld spp   %.1f spp/s   %.1f ms/frame   %dx%d",
                         static_cast<long long>(s.spp), s.spp_per_second, s.ms_per_frame, s.trace_width,
                         s.trace_height);
-  float full_w = state.viewport_size.x * state.framebuffer_scale;
+  float full_w = state.viewport.size.x * state.viewport.framebuffer_scale;
   if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
     n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));
   std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
   std::vector<StatusPiece> pieces{{text, ImGui::GetStyleColorVec4(ImGuiCol_Text)}};
   if (state.autosave && !state.autosave->last_error().empty())
     pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1)});
-  if (!state.message.empty() && now_s < state.message_until) {
-    pieces.push_back({"  |  " + state.message, ImVec4(1, 0.85f, 0.4f, 1)});
-  } else if (state.export_job && state.export_job->state() == ExportJob::State::running) {
-    std::snprintf(text, sizeof text, "  |  exporting %.0f%%", state.export_job->progress() * 100);
+  if (!state.messages.message.empty() && now_s < state.messages.message_until) {
+    pieces.push_back({"  |  " + state.messages.message, ImVec4(1, 0.85f, 0.4f, 1)});
+  } else if (export_running(state)) {
+    std::snprintf(text, sizeof text, "  |  exporting %.0f%%", state.export_ui.job->progress() * 100);
     pieces.push_back({text, ImVec4(0.5f, 0.9f, 1, 1)});
   }
   return pieces;
@@ -46,8 +46,8 @@ void draw_status_bar(Document&, EditorState& state) {
 
 void draw_editor_ui(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  state.framebuffer_scale = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
-  state.interacting = false;
+  state.viewport.framebuffer_scale = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
+  state.tools.interacting = false;
 
   handle_shortcuts(doc, state);
   draw_main_menu(doc, state);
@@ -58,8 +58,8 @@ void draw_editor_ui(Document& doc, EditorState& state) {
   const float status_h = ImGui::GetFrameHeight() + 4;
   float left = std::min(state.left_width, W * 0.3f), right = std::min(state.right_width, W * 0.35f);
   const float body_h = std::max(1.0f, H - menu_h - status_h);
-  state.viewport_pos = ImVec2(left, menu_h);
-  state.viewport_size = ImVec2(std::max(1.0f, W - left - right), body_h);
+  state.viewport.pos = ImVec2(left, menu_h);
+  state.viewport.size = ImVec2(std::max(1.0f, W - left - right), body_h);
 
   ImGui::SetNextWindowPos(ImVec2(0, menu_h));
   ImGui::SetNextWindowSize(ImVec2(left, body_h));

@@ -80,7 +80,7 @@ void handle_shortcuts(Document& doc, EditorState& state) {
     Camera& cam = doc.scene.camera;
     float speed = std::max(0.5f, glm::length(cam.target - cam.position)) * 0.8f;
     fly(cam, move * speed * std::min(io.DeltaTime, 0.1f));
-    state.interacting = true;  // holding a key is one undo step, like a drag
+    state.tools.interacting = true;  // holding a key is one undo step, like a drag
   }
 }
 
@@ -89,12 +89,12 @@ void draw_main_menu(Document& doc, EditorState& state) {
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New", "Ctrl+N")) request_action(doc, state, DocAction::new_document);
     if (ImGui::MenuItem("Open...", "Ctrl+O")) request_action(doc, state, DocAction::open_dialog);
-    if (ImGui::BeginMenu("Open Recent", !state.recent_files.empty())) {
-      for (const auto& f : state.recent_files)
+    if (ImGui::BeginMenu("Open Recent", !state.flow.recent_files.empty())) {
+      for (const auto& f : state.flow.recent_files)
         if (ImGui::MenuItem(f.string().c_str())) request_action(doc, state, DocAction::open_path, f);
       ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Examples", !state.projects_dir.empty())) {
+    if (ImGui::BeginMenu("Examples", !state.flow.projects_dir.empty())) {
       for (int n = 1; n <= 4; ++n) {
         auto file = example_project(state, n);
         std::string key = std::to_string(n);
@@ -102,15 +102,15 @@ void draw_main_menu(Document& doc, EditorState& state) {
           request_action(doc, state, DocAction::open_path, file);
       }
       ImGui::Separator();
-      if (ImGui::MenuItem("default")) request_action(doc, state, DocAction::open_path, state.projects_dir / "default.glint");
-      if (ImGui::MenuItem("cornell_box")) request_action(doc, state, DocAction::open_path, state.projects_dir / "cornell_box.glint");
+      if (ImGui::MenuItem("default")) request_action(doc, state, DocAction::open_path, state.flow.projects_dir / "default.glint");
+      if (ImGui::MenuItem("cornell_box")) request_action(doc, state, DocAction::open_path, state.flow.projects_dir / "cornell_box.glint");
       ImGui::EndMenu();
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_document(doc, state, false);
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) save_document(doc, state, true);
     ImGui::Separator();
-    if (ImGui::MenuItem("Export Render...")) state.show_export = true;
+    if (ImGui::MenuItem("Export Render...")) state.export_ui.show = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_action(doc, state, DocAction::quit);
     ImGui::EndMenu();
@@ -140,7 +140,7 @@ void draw_main_menu(Document& doc, EditorState& state) {
   }
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Frame selection", "F")) frame_selection(doc);
-    ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.focus_tool);
+    ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.tools.focus_tool);
     if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
     if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};
     ImGui::EndMenu();

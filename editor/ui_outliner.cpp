@@ -10,32 +10,32 @@ namespace {
 // One selectable row with a context menu and inline renaming (double-click or F2).
 void row(Document& doc, EditorState& state, Selection item, const std::string& name, const char* suffix = "") {
   ImGui::PushID(static_cast<int>(item.kind) * 100000 + item.index);
-  if (state.renaming == item) {
+  if (state.renaming.item == item) {
     ImGui::SetNextItemWidth(-1);
     if (ImGui::IsWindowAppearing() || !ImGui::IsAnyItemActive()) ImGui::SetKeyboardFocusHere();
-    bool done = ImGui::InputText("##rename", state.rename_buffer, sizeof state.rename_buffer,
+    bool done = ImGui::InputText("##rename", state.renaming.buffer, sizeof state.renaming.buffer,
                                  ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
     if (done) {
-      if (!rename(doc.scene, item, state.rename_buffer))
-        show_message(state, std::string("The name '") + state.rename_buffer + "' is empty or taken");
-      state.renaming = {};
+      if (!rename(doc.scene, item, state.renaming.buffer))
+        show_message(state, std::string("The name '") + state.renaming.buffer + "' is empty or taken");
+      state.renaming.item = {};
     } else if (ImGui::IsItemDeactivated() || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
-      state.renaming = {};
+      state.renaming.item = {};
     }
   } else {
     std::string label = name + suffix;
     if (ImGui::Selectable(label.c_str(), doc.selection == item, ImGuiSelectableFlags_AllowDoubleClick)) {
       doc.selection = item;
       if (ImGui::IsMouseDoubleClicked(0)) {
-        state.renaming = item;
-        std::snprintf(state.rename_buffer, sizeof state.rename_buffer, "%s", name.c_str());
+        state.renaming.item = item;
+        std::snprintf(state.renaming.buffer, sizeof state.renaming.buffer, "%s", name.c_str());
       }
     }
     if (ImGui::BeginPopupContextItem()) {
       doc.selection = item;
       if (ImGui::MenuItem("Rename")) {
-        state.renaming = item;
-        std::snprintf(state.rename_buffer, sizeof state.rename_buffer, "%s", name.c_str());
+        state.renaming.item = item;
+        std::snprintf(state.renaming.buffer, sizeof state.renaming.buffer, "%s", name.c_str());
       }
       if (ImGui::MenuItem("Duplicate")) doc.selection = {item.kind, duplicate(doc.scene, item)};
       if (ImGui::MenuItem("Delete")) doc.selection = remove(doc.scene, item);

@@ -68,8 +68,8 @@ void texture_slot(Document& doc, EditorState& state, int material, int slot, con
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110);
   name_combo(label, value, doc.scene.textures, true);
   if (ImGui::SmallButton("File...")) {
-    state.slot_material = material;
-    state.slot_index = slot;
+    state.flow.slot_material = material;
+    state.flow.slot_index = slot;
     choose_file(doc, state, FilePurpose::texture_slot);
   }
   ImGui::EndGroup();
@@ -173,7 +173,7 @@ void environment_properties(Document& doc, EditorState& state) {
 // The estimator: not part of the scene, so no undo step and no save; a change restarts the
 // accumulation through the renderer's sync.
 void sampling_properties(EditorState& state) {
-  RenderOptions& o = state.estimator;
+  RenderOptions& o = state.viewport.estimator;
   section_title("Sampling");
   ImGui::Checkbox("Light sampling", &o.light_sampling);
   ImGui::Checkbox("Environment sampling", &o.environment_sampling);
@@ -258,9 +258,9 @@ void draw_properties(Document& doc, EditorState& state) {
   int tonemap = static_cast<int>(s.display.tonemap);
   static const char* const kTonemaps[] = {"filmic", "linear"};
   if (ImGui::Combo("Tonemap", &tonemap, kTonemaps, 2)) s.display.tonemap = static_cast<Tonemap>(tonemap);
-  int res = static_cast<int>(state.resolution);
+  int res = static_cast<int>(state.viewport.resolution);
   static const char* const kResolutions[] = {"auto (fluid UI)", "full", "1/2", "1/4"};
-  if (ImGui::Combo("Preview", &res, kResolutions, 4)) state.resolution = static_cast<ViewportResolution>(res);
+  if (ImGui::Combo("Preview", &res, kResolutions, 4)) state.viewport.resolution = static_cast<ViewportResolution>(res);
   ImGui::PopItemWidth();
 }
 

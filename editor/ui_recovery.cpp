@@ -1,4 +1,4 @@
-// The offer of the unsaved work a crashed run left (state.recovery, see app_state.h): a modal
+// The offer of the unsaved work a crashed run left (state.recovery, see recent_and_recovery.h): a modal
 // with Recover (the work becomes the open document, unsaved) and Discard (the file goes).
 #include "editor/ui.h"
 

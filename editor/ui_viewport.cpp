@@ -1,5 +1,5 @@
-// The viewport: the progressive render, click to select or focus, a translate gizmo drawn with
-// ImGui's draw list, and mouse navigation (orbit, pan, zoom).
+// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list,
+// mouse navigation (orbit, pan, zoom), and the rendered image under them.
 #include <cmath>
 
 #include "editor/camera_control.h"
@@ -84,7 +84,7 @@ bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm:
 }
 
 void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focus) {
-  float aspect = state.viewport_size.x / std::max(1.0f, state.viewport_size.y);
+  float aspect = state.viewport.size.x / std::max(1.0f, state.viewport.size.y);
   auto hit = pick(doc.scene, film, aspect);
   if (focus) {
     if (!hit) return show_message(state, "Nothing there to focus on");
@@ -100,13 +100,14 @@ void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focu
 
 void draw_viewport(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(state.viewport_pos);
-  ImGui::SetNextWindowSize(state.viewport_size);
+  ImGui::SetNextWindowPos(state.viewport.pos);
+  ImGui::SetNextWindowSize(state.viewport.size);
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
   ImGui::Begin("Viewport", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse);
+                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
+                   ImGuiWindowFlags_NoBackground);
   ImGui::PopStyleVar(2);
   ImVec2 origin = ImGui::GetCursorScreenPos();
   ImVec2 size = ImGui::GetContentRegionAvail();
@@ -119,88 +120,107 @@ void draw_viewport(Document& doc, EditorState& state) {
                              ImGuiButtonFlags_MouseButtonMiddle);
   const bool hovered = ImGui::IsItemHovered();
   Gizmo gizmo = make_gizmo(doc, origin, size);
-  state.gizmo_hover = -1;
+  state.tools.gizmo_hover = -1;
   // Ctrl+click and the focus tool always focus, even on the gizmo.
-  const bool focusing = state.focus_tool || io.KeyCtrl;
-  if (gizmo.visible && hovered && !focusing && state.gizmo_axis < 0 && state.camera_button < 0)
+  const bool focusing = state.tools.focus_tool || io.KeyCtrl;
+  if (gizmo.visible && hovered && !focusing && state.tools.gizmo_axis < 0 && state.tools.camera_button < 0)
     for (int a = 0; a < 3; ++a)
-      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < 7) state.gizmo_hover = a;
+      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < 7) state.tools.gizmo_hover = a;
 
   // Presses start a gizmo drag or a camera gesture.
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.gizmo_hover >= 0) {
-    state.gizmo_axis = state.gizmo_hover;
-    state.gizmo_start_center = gizmo.center;
-    state.gizmo_start_mouse = io.MousePos;
-    const ImVec2& e = gizmo.ends[state.gizmo_axis];
-    state.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
-    state.gizmo_length = gizmo.length;
-  } else if (hovered && state.camera_button < 0) {
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.tools.gizmo_hover >= 0) {
+    state.tools.gizmo_axis = state.tools.gizmo_hover;
+    state.tools.gizmo_start_center = gizmo.center;
+    state.tools.gizmo_start_mouse = io.MousePos;
+    const ImVec2& e = gizmo.ends[state.tools.gizmo_axis];
+    state.tools.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
+    state.tools.gizmo_length = gizmo.length;
+  } else if (hovered && state.tools.camera_button < 0) {
     for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
       if (ImGui::IsMouseClicked(b)) {
-        state.camera_button = b;
-        state.camera_moved = false;
-        state.press_pos = io.MousePos;
+        state.tools.camera_button = b;
+        state.tools.camera_moved = false;
+        state.tools.press_pos = io.MousePos;
         break;
       }
   }
 
-  if (state.gizmo_axis >= 0) {
+  if (state.tools.gizmo_axis >= 0) {
     if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
       // Move along the axis by the mouse motion projected on the handle's screen direction.
-      ImVec2 s = state.gizmo_axis_screen;
+      ImVec2 s = state.tools.gizmo_axis_screen;
       float s2 = s.x * s.x + s.y * s.y;
-      ImVec2 m{io.MousePos.x - state.gizmo_start_mouse.x, io.MousePos.y - state.gizmo_start_mouse.y};
-      float along = s2 > 1e-6f ? (m.x * s.x + m.y * s.y) / s2 * state.gizmo_length : 0.0f;
+      ImVec2 m{io.MousePos.x - state.tools.gizmo_start_mouse.x, io.MousePos.y - state.tools.gizmo_start_mouse.y};
+      float along = s2 > 1e-6f ? (m.x * s.x + m.y * s.y) / s2 * state.tools.gizmo_length : 0.0f;
       glm::vec3 axis(0);
-      axis[state.gizmo_axis] = 1;
+      axis[state.tools.gizmo_axis] = 1;
       auto now = selection_center(doc.scene, doc.selection);
       if (now) {
-        glm::vec3 delta = state.gizmo_start_center + axis * along - *now;
+        glm::vec3 delta = state.tools.gizmo_start_center + axis * along - *now;
         if (glm::length(delta) > 0) translate(doc.scene, doc.selection, delta);
       }
-      state.interacting = true;
+      state.tools.interacting = true;
     } else {
-      state.gizmo_axis = -1;
+      state.tools.gizmo_axis = -1;
     }
-  } else if (state.camera_button >= 0) {
-    int b = state.camera_button;
+  } else if (state.tools.camera_button >= 0) {
+    int b = state.tools.camera_button;
     if (ImGui::IsMouseDown(b)) {
       ImVec2 d = io.MouseDelta;
-      float moved = std::hypot(io.MousePos.x - state.press_pos.x, io.MousePos.y - state.press_pos.y);
-      if (moved > 3) state.camera_moved = true;
-      if (state.camera_moved && (d.x != 0 || d.y != 0)) {
+      float moved = std::hypot(io.MousePos.x - state.tools.press_pos.x, io.MousePos.y - state.tools.press_pos.y);
+      if (moved > 3) state.tools.camera_moved = true;
+      if (state.tools.camera_moved && (d.x != 0 || d.y != 0)) {
         Camera& cam = doc.scene.camera;
         bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
         if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
         else orbit(cam, -d.x * 0.008f, -d.y * 0.008f);
       }
-      if (state.camera_moved) state.interacting = true;
+      if (state.tools.camera_moved) state.tools.interacting = true;
     } else {
-      if (b == ImGuiMouseButton_Left && !state.camera_moved) {
-        glm::vec2 film{(state.press_pos.x - origin.x) / size.x, (state.press_pos.y - origin.y) / size.y};
+      if (b == ImGuiMouseButton_Left && !state.tools.camera_moved) {
+        glm::vec2 film{(state.tools.press_pos.x - origin.x) / size.x, (state.tools.press_pos.y - origin.y) / size.y};
         click_viewport(doc, state, film, focusing);
       }
-      state.camera_button = -1;
+      state.tools.camera_button = -1;
     }
   }
   if (hovered && io.MouseWheel != 0) dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
 
-  // The edits of this frame are in: bring the image up to date, then show it.
-  if (state.render_viewport) state.render_viewport(doc, state);
+  // The image goes under this window once the viewport has rendered (show_viewport_image).
   ImDrawList* dl = ImGui::GetWindowDrawList();
   ImVec2 end(origin.x + size.x, origin.y + size.y);
-  if (state.display_texture)
-    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(state.display_texture)), origin, end);
-  else
-    dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
-  if (!state.stats.scene_problem.empty())
-    dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
-                ("Not rendering: " + state.stats.scene_problem).c_str());
   gizmo = make_gizmo(doc, origin, size);  // where the object is now
-  if (gizmo.visible) draw_gizmo(gizmo, state.gizmo_hover, state.gizmo_axis);
-  if (state.focus_tool)
+  if (gizmo.visible) draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
+  if (state.tools.focus_tool)
     dl->AddText(ImVec2(origin.x + 10, end.y - 24), IM_COL32(255, 230, 120, 255), "Focus tool: click a surface");
   ImGui::End();
+}
+
+ViewportRequest viewport_request(const EditorState& state) {
+  const ViewportView& v = state.viewport;
+  ViewportRequest r;
+  r.width = std::max(1, int(std::lround(v.size.x * v.framebuffer_scale)));
+  r.height = std::max(1, int(std::lround(v.size.y * v.framebuffer_scale)));
+  r.resolution = v.resolution;
+  r.estimator = v.estimator;
+  r.trace = !export_running(state);  // the export gets the device while it runs
+  return r;
+}
+
+void show_viewport_image(const ViewportView& view) {
+  // ImGui's background list is drawn before every window; the viewport window has no
+  // background of its own, so its gizmo and texts lie on top of the image. The image is the
+  // one rendered this frame for view.size, so a resize never shows a stale or stretched frame.
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const ImVec2 origin = view.pos;
+  const ImVec2 end(origin.x + view.size.x, origin.y + view.size.y);
+  if (view.frame.display_texture)
+    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(view.frame.display_texture)), origin, end);
+  else
+    dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+  if (!view.frame.stats.scene_problem.empty())
+    dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
+                ("Not rendering: " + view.frame.stats.scene_problem).c_str());
 }
 
 }  // namespace glint

@@ -1,7 +1,6 @@
 #include "editor/viewport_renderer.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include <epoxy/gl.h>
 
@@ -15,26 +14,31 @@ double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+// The viewport stops tracing here (about a million samples per pixel: converged long before).
+constexpr int64_t kMaxSamples = int64_t(1) << 20;
+
 }  // namespace
 
 ViewportRenderer::ViewportRenderer(GpuRendererOptions options) : renderer_(std::move(options)) {}
 
-void ViewportRenderer::render(Document& doc, EditorState& state) {
+ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest& request) {
+  ViewportFrame out;
+  FrameStats& stats = out.stats;
   auto now = std::chrono::steady_clock::now();
   if (last_frame_.time_since_epoch().count() != 0) {
     double ms = std::chrono::duration<double, std::milli>(now - last_frame_).count();
-    state.stats.ms_per_frame = state.stats.ms_per_frame > 0 ? 0.9 * state.stats.ms_per_frame + 0.1 * ms : ms;
+    ms_per_frame_ = ms_per_frame_ > 0 ? 0.9 * ms_per_frame_ + 0.1 * ms : ms;
     budget_.record_frame(ms * 1e-3, last_trace_seconds_);
   }
   last_trace_seconds_ = 0;
   last_frame_ = now;
-  if (state.stats.gl_renderer.empty()) state.stats.gl_renderer = gl_renderer_name();
+  if (gl_renderer_.empty()) gl_renderer_ = gl_renderer_name();
 
   // Trace at framebuffer pixels (HiDPI), divided down when the device is too slow for that.
-  const int full_w = std::max(1, int(std::lround(state.viewport_size.x * state.framebuffer_scale)));
-  const int full_h = std::max(1, int(std::lround(state.viewport_size.y * state.framebuffer_scale)));
+  const int full_w = std::max(1, request.width);
+  const int full_h = std::max(1, request.height);
   int divisor = 1;
-  switch (state.resolution) {
+  switch (request.resolution) {
     case ViewportResolution::automatic: divisor = budget_.divisor(); break;
     case ViewportResolution::full: divisor = 1; break;
     case ViewportResolution::half: divisor = 2; break;
@@ -44,27 +48,23 @@ void ViewportRenderer::render(Document& doc, EditorState& state) {
   const int h = std::max(1, (full_h + divisor - 1) / divisor);
 
   // An invalid value typed into a field (a zero-area quad, say) keeps the last good image.
-  auto problems = validate_scene(doc.scene, false);
-  state.stats.scene_problem = problems.empty() ? "" : problems.front().what();
+  auto problems = validate_scene(scene, false);
+  stats.scene_problem = problems.empty() ? "" : problems.front().what();
   bool synced = false;
   if (problems.empty()) {
     try {
-      renderer_.set_options(state.estimator);
-      renderer_.sync(doc.scene, w, h);
+      renderer_.set_options(request.estimator);
+      renderer_.sync(scene, w, h);
       synced = true;
     } catch (const std::exception& e) {
-      state.stats.scene_problem = e.what();  // an unreadable image: previous state kept
+      stats.scene_problem = e.what();  // an unreadable image: previous state kept
     }
   }
 
-  // The export gets the device while it runs; the viewport waits.
-  const bool exporting = state.export_job && state.export_job->state() == ExportJob::State::running;
-  if (exporting) {
-    step_export(state, budget_.config().trace_seconds);
-  } else if (synced && renderer_.sample_count() < max_spp_) {
+  if (request.trace && synced && renderer_.sample_count() < kMaxSamples) {
     const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
     int k = budget_.samples(pixels);
-    k = static_cast<int>(std::min<int64_t>(k, max_spp_ - renderer_.sample_count()));
+    k = static_cast<int>(std::min<int64_t>(k, kMaxSamples - renderer_.sample_count()));
     auto t0 = std::chrono::steady_clock::now();
     renderer_.trace(k);
     glFinish();  // the budget needs the pass's real time
@@ -89,14 +89,15 @@ void ViewportRenderer::render(Document& doc, EditorState& state) {
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     filtered_texture_ = tex;
   }
-  state.display_texture = tex;
-  state.stats.spp = renderer_.sample_count();
-  state.stats.spp_per_second = spp_rate_;
-  state.stats.trace_width = renderer_.width();
-  state.stats.trace_height = renderer_.height();
-
+  out.display_texture = tex;
+  stats.spp = renderer_.sample_count();
+  stats.spp_per_second = spp_rate_;
+  stats.ms_per_frame = ms_per_frame_;
+  stats.trace_width = renderer_.width();
+  stats.trace_height = renderer_.height();
+  stats.gl_renderer = gl_renderer_;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (fb_w_ > 0) glViewport(0, 0, fb_w_, fb_h_);
+  return out;
 }
 
 }  // namespace glint

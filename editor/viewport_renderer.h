@@ -1,13 +1,13 @@
 // The viewport's side of one frame (docs/DESIGN.md §2): renderer.sync(scene, size), k samples
-// chosen by the frame budget, update_display(); and one slice of a running export. Every
-// accumulation reset comes from sync() comparing digests: nothing here resets on its own.
+// chosen by the frame budget, update_display(). Every accumulation reset comes from sync()
+// comparing digests: nothing here resets on its own. Knows no UI: a ViewportRequest in, a
+// ViewportFrame out.
 #pragma once
 
 #include <chrono>
-#include <memory>
 
 #include "editor/frame_budget.h"
-#include "editor/ui.h"
+#include "editor/viewport_frame.h"
 #include "renderer/gpu_renderer.h"
 
 namespace glint {
@@ -17,11 +17,12 @@ class ViewportRenderer {
   // Needs a current OpenGL 4.5 context.
   explicit ViewportRenderer(GpuRendererOptions options = {});
 
-  // The render_viewport hook of EditorState. Leaves the default framebuffer bound with the
-  // viewport set to framebuffer_size (what ImGui's renderer expects afterwards).
-  void render(Document& doc, EditorState& state);
-  void set_framebuffer_size(int w, int h) { fb_w_ = w; fb_h_ = h; }
-  void set_max_samples(int64_t spp) { max_spp_ = spp; }  // stop tracing once reached
+  // Brings the image of `scene` up to date at the request's size and returns it. Leaves the
+  // default framebuffer bound.
+  ViewportFrame render(const Scene& scene, const ViewportRequest& request);
+
+  // Seconds of tracing one UI frame affords (what a running export gets instead).
+  double trace_seconds() const { return budget_.config().trace_seconds; }
 
   GpuRenderer& renderer() { return renderer_; }
   FrameBudget& budget() { return budget_; }
@@ -29,9 +30,9 @@ class ViewportRenderer {
  private:
   GpuRenderer renderer_;
   FrameBudget budget_;
-  int fb_w_ = 0, fb_h_ = 0;
-  int64_t max_spp_ = 1 << 20;
   unsigned filtered_texture_ = 0;
+  std::string gl_renderer_;
+  double ms_per_frame_ = 0;  // smoothed
   std::chrono::steady_clock::time_point last_frame_{};
   std::chrono::steady_clock::time_point rate_start_{};
   int64_t rate_samples_ = 0;

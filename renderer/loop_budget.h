@@ -3,7 +3,7 @@
 // (LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop"): a pass of many samples then
 // silently skips intersection tests and returns garbage or NaN (the default project at 16x16 in
 // one pass of 1000 samples: 28% of samples non-finite; in passes of 100: none). So the renderer
-// splits passes into draws of at most samples_per_draw samples, estimated from the loops one
+// splits passes into draws of at most samples_per_draw_for samples, estimated from the loops one
 // sample runs (a bound, not a count). Other drivers have no such limit, and the extra draws cost
 // them nothing noticeable. A scene whose single sample may exceed the limit (thousands of
 // shapes, looped over without an acceleration structure) cannot render correctly on llvmpipe;
@@ -25,9 +25,6 @@ inline long loop_iterations_per_sample(long shapes, int max_bounces) {
 // A quarter of the limit per draw, at most 64 samples.
 inline int samples_per_draw_for(long per_sample) {
   return static_cast<int>(std::clamp(kLlvmpipeLoopLimit / 4 / std::max(per_sample, 1L), 1L, 64L));
-}
-inline int samples_per_draw(long shapes, int max_bounces) {
-  return samples_per_draw_for(loop_iterations_per_sample(shapes, max_bounces));
 }
 
 // With the BVH (shaders/lib/bvh.glsl) a closest-hit query has no bound below the number of

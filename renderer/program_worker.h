@@ -64,9 +64,6 @@ class ProgramWorker {
   // drops its pointer; the program is then deleted on the worker.
   void submit(std::shared_ptr<ProgramJob> job);
 
-  // False if the worker thread could not bind its context (then jobs fail with that error).
-  bool healthy() const { return healthy_.load(); }
-
  private:
   void run();
   void build(ProgramJob& job);
@@ -77,7 +74,7 @@ class ProgramWorker {
   std::condition_variable wake_;
   std::deque<std::shared_ptr<ProgramJob>> queue_;
   bool stopping_ = false;
-  std::atomic<bool> healthy_{true};
+  bool healthy_ = true;  // the worker thread bound its context (read and written there only)
   std::string context_error_;
   GLuint vao_ = 0;  // the worker context's own (vertex arrays are not shared)
   std::thread thread_;

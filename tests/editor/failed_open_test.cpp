@@ -52,11 +52,11 @@ TEST(FailedOpen, LeavesThePreviousDocumentUntouched) {
   EditorState state;
   for (const auto& [name, problem] : expected) {
     SCOPED_TRACE(name);
-    state.error.clear();
+    state.messages.error.clear();
     EXPECT_FALSE(open_document(doc, state, dir / name));
-    EXPECT_NE(state.error.find((dir / name).string()), std::string::npos) << state.error;
-    EXPECT_NE(state.error.find(problem), std::string::npos) << state.error;
-    EXPECT_TRUE(state.open_error);
+    EXPECT_NE(state.messages.error.find((dir / name).string()), std::string::npos) << state.messages.error;
+    EXPECT_NE(state.messages.error.find(problem), std::string::npos) << state.messages.error;
+    EXPECT_TRUE(state.messages.open_error);
     EXPECT_EQ(doc.scene, scene_before);
     EXPECT_EQ(doc.path(), dir / "current.glint");
     EXPECT_EQ(doc.selection, (Selection{SelectionKind::sphere, 1}));

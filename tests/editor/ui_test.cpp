@@ -1,18 +1,22 @@
 // The editor's UI driven headlessly: an ImGui context and a headless EGL context, no window.
-// Panels run for real frames with simulated mouse and keys; the viewport hook traces for real.
+// Panels run for real frames (editor_frame, as the app runs them) with simulated mouse and keys;
+// the viewport traces for real.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
+#include <epoxy/gl.h>
+// epoxy must come before GLFW.
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
 #include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
 
 #include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
 
-#include "editor/app_state.h"
+#include "editor/editor_frame.h"
 #include "editor/picking.h"
+#include "editor/recent_and_recovery.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
@@ -33,9 +37,8 @@ class UiTest : public ::testing::Test {
     gl_ = HeadlessGLContext::create();
     start_imgui();
     viewport_ = std::make_unique<ViewportRenderer>();
-    state_.render_viewport = [this](Document& d, EditorState& s) { viewport_->render(d, s); };
-    state_.resolution = ViewportResolution::quarter;  // tiny GL images
-    state_.projects_dir = kProjects;
+    state_.viewport.resolution = ViewportResolution::quarter;  // tiny GL images
+    state_.flow.projects_dir = kProjects;
     open_document(doc_, state_, kProjects / "default.glint");
     frame();
   }
@@ -69,9 +72,7 @@ class UiTest : public ::testing::Test {
     path_prompt_open_ = ImGui::IsPopupOpen("Choose a file");
     error_open_ = ImGui::IsPopupOpen("Error");
     recovery_offer_open_ = ImGui::IsPopupOpen("Recover unsaved work?");
-    draw_editor_ui(doc_, state_);
-    doc_.end_frame(ImGui::IsAnyItemActive() || state_.interacting);
-    ImGui::Render();
+    editor_frame(doc_, state_, *viewport_);
   }
   void press(int key, bool ctrl = false, bool shift = false) {
     ImGuiIO& io = ImGui::GetIO();
@@ -86,8 +87,8 @@ class UiTest : public ::testing::Test {
   // Screen position of a world point in the viewport.
   ImVec2 screen(glm::vec3 p) {
     glm::vec2 v;
-    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport_size.x, state_.viewport_size.y}, p, v));
-    return ImVec2(state_.viewport_pos.x + v.x, state_.viewport_pos.y + v.y);
+    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
+    return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
   }
   void click(ImVec2 at, bool ctrl = false) {
     ImGuiIO& io = ImGui::GetIO();
@@ -121,11 +122,11 @@ class UiTest : public ::testing::Test {
     float best_d = 1e30f;
     for (size_t i = 0; i < doc_.scene.spheres.size(); ++i) {
       glm::vec2 v;
-      if (!project_to_viewport(doc_.scene.camera, {state_.viewport_size.x, state_.viewport_size.y},
+      if (!project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y},
                                doc_.scene.spheres[i].center, v))
         continue;
-      glm::vec2 film = v / glm::vec2(state_.viewport_size.x, state_.viewport_size.y);
-      auto hit = pick(doc_.scene, film, state_.viewport_size.x / state_.viewport_size.y);
+      glm::vec2 film = v / glm::vec2(state_.viewport.size.x, state_.viewport.size.y);
+      auto hit = pick(doc_.scene, film, state_.viewport.size.x / state_.viewport.size.y);
       float d = glm::length(film - glm::vec2(0.5f));
       if (hit && hit->what == Selection{SelectionKind::sphere, int(i)} && d < best_d) {
         best = int(i);
@@ -144,13 +145,55 @@ class UiTest : public ::testing::Test {
 
 TEST_F(UiTest, ViewportAccumulatesAndFillsTheCentre) {
   for (int i = 0; i < 5; ++i) frame();
-  EXPECT_GE(state_.stats.spp, 5);
-  EXPECT_NE(state_.display_texture, 0u);
-  EXPECT_EQ(state_.stats.scene_problem, "");
-  EXPECT_GT(state_.viewport_size.x, 100);
-  EXPECT_GT(state_.viewport_pos.x, 0);  // outliner on the left
-  EXPECT_LT(state_.viewport_pos.x + state_.viewport_size.x, 800);  // properties on the right
-  EXPECT_EQ(state_.stats.trace_width, (int(state_.viewport_size.x) + 3) / 4);
+  EXPECT_GE(state_.viewport.frame.stats.spp, 5);
+  EXPECT_NE(state_.viewport.frame.display_texture, 0u);
+  EXPECT_EQ(state_.viewport.frame.stats.scene_problem, "");
+  EXPECT_GT(state_.viewport.size.x, 100);
+  EXPECT_GT(state_.viewport.pos.x, 0);  // outliner on the left
+  EXPECT_LT(state_.viewport.pos.x + state_.viewport.size.x, 800);  // properties on the right
+  EXPECT_EQ(state_.viewport.frame.stats.trace_width, (int(state_.viewport.size.x) + 3) / 4);
+}
+
+// The viewport renders after the widgets, at the panel's size of this very frame, and the image
+// ImGui draws is that render: a resized window never shows a stale or stretched frame.
+TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
+  for (int i = 0; i < 2; ++i) frame();
+  for (ImVec2 display : {ImVec2(1000, 640), ImVec2(700, 420), ImVec2(701, 421)}) {
+    ImGui::GetIO().DisplaySize = display;
+    frame();
+    const ViewportView& v = state_.viewport;
+    EXPECT_NEAR(v.pos.x + v.size.x + std::min(state_.right_width, display.x * 0.35f), display.x, 0.5f);
+    const unsigned tex = v.frame.display_texture;
+    ASSERT_NE(tex, 0u);
+    // The texture shown is the one traced at this frame's size (quarter resolution here).
+    int tw = 0, th = 0;
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &tw);
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &th);
+    EXPECT_EQ(tw, (int(std::lround(v.size.x)) + 3) / 4) << display.x;
+    EXPECT_EQ(th, (int(std::lround(v.size.y)) + 3) / 4) << display.y;
+    EXPECT_EQ(v.frame.stats.trace_width, tw);
+    // ... and this frame's draw data draws it over exactly the panel.
+    int images = 0;
+    const ImDrawData* data = ImGui::GetDrawData();
+    for (int l = 0; l < data->CmdListsCount; ++l) {
+      const ImDrawList* list = data->CmdLists[l];
+      for (const ImDrawCmd& cmd : list->CmdBuffer) {
+        if (cmd.TextureId != reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex))) continue;
+        ++images;
+        ImVec2 lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
+        for (unsigned i = 0; i < cmd.ElemCount; ++i) {
+          const ImVec2 p = list->VtxBuffer[cmd.VtxOffset + list->IdxBuffer[cmd.IdxOffset + i]].pos;
+          lo = ImVec2(std::min(lo.x, p.x), std::min(lo.y, p.y));
+          hi = ImVec2(std::max(hi.x, p.x), std::max(hi.y, p.y));
+        }
+        EXPECT_NEAR(lo.x, v.pos.x, 0.01f);
+        EXPECT_NEAR(lo.y, v.pos.y, 0.01f);
+        EXPECT_NEAR(hi.x, v.pos.x + v.size.x, 0.01f);
+        EXPECT_NEAR(hi.y, v.pos.y + v.size.y, 0.01f);
+      }
+    }
+    EXPECT_EQ(images, 1) << display.x;
+  }
 }
 
 TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
@@ -190,15 +233,15 @@ TEST_F(UiTest, ClickSelectsCtrlClickFocusesEmptyClickDeselects) {
 
   float focus_before = doc_.scene.camera.focus_distance;
   click(screen(s.center), /*ctrl=*/true);
-  auto hit = pick(doc_.scene, {(screen(s.center).x - state_.viewport_pos.x) / state_.viewport_size.x,
-                               (screen(s.center).y - state_.viewport_pos.y) / state_.viewport_size.y},
-                  state_.viewport_size.x / state_.viewport_size.y);
+  auto hit = pick(doc_.scene, {(screen(s.center).x - state_.viewport.pos.x) / state_.viewport.size.x,
+                               (screen(s.center).y - state_.viewport.pos.y) / state_.viewport.size.y},
+                  state_.viewport.size.x / state_.viewport.size.y);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(doc_.scene.camera.focus_distance, focus_distance_for(doc_.scene.camera, hit->point), 1e-3);
   EXPECT_NE(doc_.scene.camera.focus_distance, focus_before);
   EXPECT_EQ(doc_.selection, (Selection{SelectionKind::sphere, ball}));  // focusing keeps the selection
 
-  click(ImVec2(state_.viewport_pos.x + state_.viewport_size.x * 0.5f, state_.viewport_pos.y + 3));  // the sky
+  click(ImVec2(state_.viewport.pos.x + state_.viewport.size.x * 0.5f, state_.viewport.pos.y + 3));  // the sky
   EXPECT_EQ(doc_.selection.kind, SelectionKind::none);
 }
 
@@ -216,13 +259,13 @@ TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = mid;
   frame();
-  EXPECT_EQ(state_.gizmo_hover, 0);
+  EXPECT_EQ(state_.tools.gizmo_hover, 0);
   io.MouseDown[0] = true;
   frame();
   for (int i = 1; i <= 5; ++i) {  // drag along the handle's screen direction, one full length
     io.MousePos = ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5);
     frame();
-    EXPECT_TRUE(state_.interacting);
+    EXPECT_TRUE(state_.tools.interacting);
   }
   io.MouseDown[0] = false;
   frame();
@@ -255,9 +298,9 @@ TEST_F(UiTest, AddSphereGlossyMaterialWithColourTexture) {
   doc_.scene.spheres[doc_.selection.index].material = doc_.scene.materials[m].name;
   frame();
   // The texture slot's "File..." with the typed-path fallback: a prompt, then the file applies.
-  state_.native_dialogs = false;
-  state_.slot_material = m;
-  state_.slot_index = 0;
+  state_.flow.native_dialogs = false;
+  state_.flow.slot_material = m;
+  state_.flow.slot_index = 0;
   choose_file(doc_, state_, FilePurpose::texture_slot);
   frame();
   frame();
@@ -267,11 +310,11 @@ TEST_F(UiTest, AddSphereGlossyMaterialWithColourTexture) {
   EXPECT_FALSE(path_prompt_open_);
   const Material& mat = doc_.scene.materials[m];
   int t = find_texture(doc_.scene, mat.color_texture);
-  ASSERT_GE(t, 0) << "no colour texture assigned: " << state_.error;
+  ASSERT_GE(t, 0) << "no colour texture assigned: " << state_.messages.error;
   EXPECT_EQ(test::problems(doc_.scene, true), "");
   EXPECT_NE(state_.thumbnails.get(resolve_asset_path(doc_.scene, doc_.scene.textures[t].path)), 0u);
   frame();
-  EXPECT_EQ(state_.stats.scene_problem, "");
+  EXPECT_EQ(state_.viewport.frame.stats.scene_problem, "");
   EXPECT_GT(viewport_->renderer().sample_count(), 0);
 }
 
@@ -283,23 +326,23 @@ TEST_F(UiTest, ImagesThatCannotLoadAreRefusedWhenChosen) {
   Image nan_sky{2, 1, {1, 1, 1, 1, 1, std::nanf(""), 1, 1}};
   save_image(dir / "nan.exr", nan_sky);
   const Scene before = doc_.scene;
-  state_.slot_material = 0;
-  state_.slot_index = 0;
+  state_.flow.slot_material = 0;
+  state_.flow.slot_index = 0;
   apply_chosen_file(doc_, state_, FilePurpose::texture_slot, (dir / "short.png").string());
-  EXPECT_NE(state_.error.find((dir / "short.png").string() + ": cannot decode image"), std::string::npos)
-      << state_.error;
-  state_.error.clear();
+  EXPECT_NE(state_.messages.error.find((dir / "short.png").string() + ": cannot decode image"), std::string::npos)
+      << state_.messages.error;
+  state_.messages.error.clear();
   apply_chosen_file(doc_, state_, FilePurpose::environment, (dir / "nan.exr").string());
-  EXPECT_NE(state_.error.find("environment.texture: cannot read image: " + (dir / "nan.exr").string() +
+  EXPECT_NE(state_.messages.error.find("environment.texture: cannot read image: " + (dir / "nan.exr").string() +
                               ": texel (1, 0) channel G is nan"),
             std::string::npos)
-      << state_.error;
+      << state_.messages.error;
   EXPECT_EQ(doc_.scene, before);
 }
 
 TEST_F(UiTest, SaveAsThroughThePromptThenCtrlSThenReopen) {
   test::TempDir dir;
-  state_.native_dialogs = false;
+  state_.flow.native_dialogs = false;
   doc_.scene.spheres[0].radius = 0.77f;
   frame();
   EXPECT_TRUE(doc_.dirty());
@@ -326,7 +369,7 @@ TEST_F(UiTest, SaveAsThroughThePromptThenCtrlSThenReopen) {
   EXPECT_FLOAT_EQ(other.scene.spheres[1].radius, 0.33f);
   EXPECT_EQ(other.scene.spheres, saved.spheres);
   EXPECT_EQ(test::problems(other.scene, true), "");  // asset paths rebased to the new folder
-  EXPECT_EQ(state_.recent_files.size(), 0u);  // no recent-file hook set in this test
+  EXPECT_EQ(state_.flow.recent_files.size(), 0u);  // no recent-file hook set in this test
 }
 
 TEST_F(UiTest, UnsavedChangesPromptGuardsTheNumberKeys) {
@@ -356,7 +399,7 @@ TEST_F(UiTest, OutlinerAndPropertiesRunForEveryKindOfSelection) {
     frame();
     frame();
   }
-  state_.show_export = true;
+  state_.export_ui.show = true;
   frame();
   EXPECT_FALSE(doc_.dirty());  // drawing panels edits nothing
   EXPECT_EQ(test::problems(doc_.scene), "");
@@ -364,17 +407,17 @@ TEST_F(UiTest, OutlinerAndPropertiesRunForEveryKindOfSelection) {
 
 TEST_F(UiTest, ExportFromTheEditorRunsInSlices) {
   test::TempDir dir;
-  state_.export_settings.width = 24;
-  state_.export_settings.height = 16;
-  state_.export_settings.samples = 12;
-  state_.export_settings.output = dir / "shot.png";
-  state_.export_job = std::make_unique<ExportJob>(doc_.scene, state_.export_settings);
+  state_.export_ui.settings.width = 24;
+  state_.export_ui.settings.height = 16;
+  state_.export_ui.settings.samples = 12;
+  state_.export_ui.settings.output = dir / "shot.png";
+  state_.export_ui.job = std::make_unique<ExportJob>(doc_.scene, state_.export_ui.settings);
   int frames = 0;
-  while (state_.export_job->state() == ExportJob::State::running && frames < 500) {
+  while (state_.export_ui.job->state() == ExportJob::State::running && frames < 500) {
     frame();
     ++frames;
   }
-  EXPECT_EQ(state_.export_job->state(), ExportJob::State::done) << state_.export_job->error();
+  EXPECT_EQ(state_.export_ui.job->state(), ExportJob::State::done) << state_.export_ui.job->error();
   EXPECT_TRUE(fs::exists(dir / "shot.png"));
 }
 
@@ -442,9 +485,9 @@ TEST_F(UiTest, RecoveryOfferWaitsForTheErrorBoxAndDiscards) {
 TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
   test::TempDir dir;
   const fs::path missing = dir / "missing.glint";
-  state_.native_dialogs = false;
+  state_.flow.native_dialogs = false;
   choose_file(doc_, state_, FilePurpose::open_project);
-  std::snprintf(state_.prompt.buffer, sizeof state_.prompt.buffer, "%s", missing.c_str());
+  std::snprintf(state_.flow.prompt.buffer, sizeof state_.flow.prompt.buffer, "%s", missing.c_str());
   for (int i = 0; i < 3; ++i) frame();  // the prompt opens and its field takes the keyboard
   ASSERT_TRUE(path_prompt_open_);
   ImGuiIO& io = ImGui::GetIO();
@@ -455,7 +498,7 @@ TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
   frame();
   EXPECT_FALSE(path_prompt_open_);
   EXPECT_TRUE(error_open_);
-  EXPECT_NE(state_.error.find(missing.string()), std::string::npos) << state_.error;
+  EXPECT_NE(state_.messages.error.find(missing.string()), std::string::npos) << state_.messages.error;
   EXPECT_EQ(doc_.path(), kProjects / "default.glint");  // the open document stays
   press(GLFW_KEY_ENTER);
   frame();

@@ -1,5 +1,5 @@
 // Recent files and crash recovery, in a temporary folder instead of $HOME.
-#include "editor/app_state.h"
+#include "editor/recent_and_recovery.h"
 
 #include <fstream>
 

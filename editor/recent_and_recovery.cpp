@@ -1,5 +1,5 @@
-// Recent files and crash recovery (see app_state.h).
-#include "editor/app_state.h"
+// Recent files and crash recovery (see recent_and_recovery.h).
+#include "editor/recent_and_recovery.h"
 
 #include <algorithm>
 #include <cmath>

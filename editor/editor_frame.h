@@ -1,0 +1,18 @@
+// One frame of the editor, top to bottom (docs/DESIGN.md §2). Between ImGui::NewFrame() and
+// the backend's draw; the app (editor_app.cpp) and the UI tests run the same function.
+#pragma once
+
+namespace glint {
+
+class Document;
+struct EditorState;
+class ViewportRenderer;
+
+// 1. input and widgets edit the document (draw_editor_ui: no rendering in there);
+// 2. the viewport renders the edited scene at the panel's size of this frame;
+// 3. a running export traces its slice (the viewport traced nothing meanwhile);
+// 4. undo is derived (Document::end_frame), a drag in progress being one step;
+// 5. the viewport image goes under the panels and ImGui::Render() builds the draw data.
+void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport);
+
+}  // namespace glint

@@ -1,0 +1,38 @@
+// What the viewport renderer is asked for and what it gives back each frame: plain values, so
+// that it needs no UI state (docs/DESIGN.md §2).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "renderer/render_options.h"
+
+namespace glint {
+
+enum class ViewportResolution { automatic, full, half, quarter };
+
+// One frame's request: the panel's size this frame and how to preview.
+struct ViewportRequest {
+  int width = 1, height = 1;  // the panel in framebuffer pixels (HiDPI: more than its points)
+  ViewportResolution resolution = ViewportResolution::automatic;  // automatic: the frame budget
+  RenderOptions estimator;  // how the viewport samples (not saved in the project)
+  bool trace = true;        // false while an export has the device: sync and tonemap only
+};
+
+struct FrameStats {
+  int64_t spp = 0;
+  double spp_per_second = 0;
+  double ms_per_frame = 0;
+  int trace_width = 0, trace_height = 0;
+  std::string gl_renderer;
+  std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
+};
+
+// The frame's result: the image to show for the requested size (0 before the first one) and
+// the figures of the status bar.
+struct ViewportFrame {
+  unsigned display_texture = 0;
+  FrameStats stats;
+};
+
+}  // namespace glint
