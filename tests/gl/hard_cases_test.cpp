@@ -11,6 +11,7 @@
 #include "renderer/camera_frame.h"
 #include "renderer/loop_budget.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/gl/gl_test_support.h"
 
 namespace glint {

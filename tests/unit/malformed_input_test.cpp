@@ -18,6 +18,7 @@
 
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/image_fixtures.h"
 #include "tests/temp_dir.h"
 
