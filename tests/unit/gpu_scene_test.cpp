@@ -7,20 +7,15 @@
 namespace glint {
 namespace {
 
-Scene sample_scene() {
-  Scene s;
-  s.textures.push_back({.name = "wood", .path = "wood.png"});
-  s.materials.push_back({.name = "m", .color_texture = "wood"});
-  s.spheres.push_back({.name = "a", .center = {0, 0, 0}, .radius = 1, .material = "m"});
-  s.quads.push_back({.name = "q", .material = "m",
-                     .corners = {glm::vec3{0, 0, 0}, glm::vec3{0, 1, 0}, glm::vec3{1, 0, 0}, glm::vec3{1, 1, 0}}});
-  return s;
-}
-
+// One file read three ways: as sRGB colour by two materials, as linear roughness by one.
 TEST(GpuScene, PacksOneLayerPerTextureAndEncoding) {
-  Scene s = sample_scene();
-  s.materials.push_back({.name = "rough", .roughness_texture = "wood"});
-  s.materials.push_back({.name = "same", .color_texture = "wood"});
+  Scene s;
+  s.textures = {{.name = "wood", .path = "wood.png"}};
+  s.materials = {{.name = "m", .color_texture = "wood"},
+                 {.name = "rough", .roughness_texture = "wood"},
+                 {.name = "same", .color_texture = "wood"}};
+  s.quads = {{.material = "m", .corners = {glm::vec3{0, 0, 0}, glm::vec3{0, 1, 0},
+                                           glm::vec3{1, 0, 0}, glm::vec3{1, 1, 0}}}};
   PackedScene p = pack_scene(s);
   ASSERT_EQ(p.layers.size(), 2u);  // wood as sRGB colour, wood as linear roughness
   EXPECT_EQ(p.materials[0].layers.x, 0);
