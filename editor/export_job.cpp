@@ -9,7 +9,7 @@
 #include "renderer/atomic_file.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
-#include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {
@@ -21,7 +21,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 std::string validate_export_settings(const ExportSettings& s) {
-  // The loader's film limits and message (project_file.h): an export renders with a second
+  // The loader's film limits and message (scene_validation.h): an export renders with a second
   // GpuRenderer of this size, whose GPU buffers the same estimate covers.
   if (const auto problem = check_film_size(s.width, s.height)) {
     const std::string& key = problem->json_path;

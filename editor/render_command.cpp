@@ -24,6 +24,7 @@
 #include "renderer/image.h"
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {

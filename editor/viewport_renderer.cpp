@@ -5,7 +5,7 @@
 #include <epoxy/gl.h>
 
 #include "renderer/gl_context.h"
-#include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {

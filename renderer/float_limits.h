@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "renderer/project_file.h"
+#include "renderer/project_error.h"
 #include "renderer/scene.h"
 
 namespace glint {

@@ -16,7 +16,7 @@
 #include "renderer/loop_budget.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/program_worker.h"
-#include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
 #include "renderer/texture_cache.h"
 

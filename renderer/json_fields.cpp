@@ -29,6 +29,10 @@ std::string index_path(const std::string& path, size_t index) {
   return path + "[" + std::to_string(index) + "]";
 }
 
+std::string quote_name(const std::string& text) {
+  return Json(clip(text, kMaxQuotedString)).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
 std::string describe(const Json& value) {
   switch (value.type()) {
     case Json::value_t::null: return "null";
@@ -135,7 +139,7 @@ std::string read_string(const Json& value, const std::string& file, const std::s
 }
 
 ObjectReader::ObjectReader(const Json& object, std::string path, const std::string& file,
-                           std::initializer_list<std::string_view> allowed_keys)
+                           const std::vector<std::string_view>& allowed_keys)
     : object_(object), path_(std::move(path)), file_(file) {
   if (!object.is_object()) fail(file_, path_, "expected an object, got " + describe(object));
   for (const auto& item : object.items()) {

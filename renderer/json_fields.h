@@ -5,21 +5,21 @@
 #pragma once
 
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "renderer/project_file.h"
+#include "renderer/project_error.h"
 
 namespace glint::json_fields {
 
 using Json = nlohmann::ordered_json;  // keeps keys in document / writing order
 
 // Limits of the text that messages quote from a file: a key in a JSON path, a quoted name or
-// string value, and the parts of a whole message (project_file.cpp error_message).
+// string value, and the parts of a whole message (project_error.cpp error_message).
 constexpr size_t kMaxQuotedKey = 64;
 constexpr size_t kMaxQuotedString = 64;
 // A document nested deeper than this (arrays and objects) is refused before it is parsed;
@@ -34,6 +34,10 @@ std::string clip(std::string_view text, size_t max);
 // A key longer than kMaxQuotedKey is clipped (a path names a place in an error message).
 std::string child_path(const std::string& path, std::string_view key);
 std::string index_path(const std::string& path, size_t index);
+
+// A name in quotes for a message, clipped to kMaxQuotedString; invalid UTF-8 (possible in
+// scenes built through the API) is shown replaced rather than thrown by nlohmann's dump.
+std::string quote_name(const std::string& text);
 
 // A short description of a value for error messages: "string \"abc\"", "number 1.5", "null".
 std::string describe(const Json& value);
@@ -64,7 +68,7 @@ std::string integer_range_problem(int64_t min, int64_t max, const std::string& g
 class ObjectReader {
  public:
   ObjectReader(const Json& object, std::string path, const std::string& file,
-               std::initializer_list<std::string_view> allowed_keys);
+               const std::vector<std::string_view>& allowed_keys);
 
   const Json* find(std::string_view key) const;  // nullptr when absent
   void require(std::string_view key) const;      // throws "missing required key"

@@ -1,20 +1,15 @@
 #include "renderer/project_file.h"
 
-
 #include <cerrno>
-#include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <map>
 
 #include "renderer/atomic_file.h"
-#include "renderer/float_limits.h"
-#include "renderer/image.h"
 #include "renderer/json_fields.h"
-#include "renderer/scene_images.h"
+#include "renderer/scene_fields.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 
@@ -22,245 +17,187 @@ namespace fs = std::filesystem;
 using json_fields::Json;
 using json_fields::ObjectReader;
 using json_fields::child_path;
-using json_fields::float_text;
 using json_fields::index_path;
 
 namespace {
 
-// The parts of a message are clipped (their middle replaced by "..."), so that a message stays
-// within about 600 characters whatever the file holds: a file name, path or problem that
-// quotes a 50 MB key or string would otherwise repeat it in full.
-constexpr size_t kMaxMessageFile = 160;
-constexpr size_t kMaxMessagePath = 120;
-constexpr size_t kMaxMessageProblem = 300;
+// ---- Parsing: structure and types, field by field of scene_fields.h's tables. Values are
+// checked afterwards by validate_scene. ----
 
-std::string error_message(const std::string& file, const std::string& path,
-                          const std::string& problem) {
-  std::string message;
-  if (!file.empty()) message += json_fields::clip(file, kMaxMessageFile) + ": ";
-  if (!path.empty()) message += json_fields::clip(path, kMaxMessagePath) + ": ";
-  return message + json_fields::clip(problem, kMaxMessageProblem);
+// The keys of T's table, for ObjectReader's unknown-key check and message.
+template <class T>
+const std::vector<std::string_view>& keys_of() {
+  static const std::vector<std::string_view> keys = [] {
+    std::vector<std::string_view> k;
+    FieldTable<T>::visit([&](const auto& f) { k.push_back(f.key); });
+    return k;
+  }();
+  return keys;
 }
 
-// ---- Parsing: structure and types. Values are checked afterwards by validate_scene. ----
-
-constexpr int kMaxBounces = 1024;
-
-// A name in quotes for a message; invalid UTF-8 (possible in scenes built through the API)
-// is shown replaced rather than thrown by nlohmann's dump.
-// Long names are clipped (json_fields::clip).
-std::string quote_name(const std::string& text) {
-  return Json(json_fields::clip(text, json_fields::kMaxQuotedString))
-      .dump(-1, ' ', false, Json::error_handler_t::replace);
+// "matte, reflective, glossy or transparent"
+template <class E>
+std::string enum_choices() {
+  std::string text;
+  const auto& values = EnumNames<E>::values;
+  for (size_t i = 0; i < values.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == values.size() ? " or " : ", ") + std::string(to_string(values[i]));
+  return text;
 }
 
-// The array sizes of load_project's limits (project_file.h).
-std::string count_problem(size_t count, size_t limit, const char* what) {
-  return "too many " + std::string(what) + ": " + std::to_string(count) + " (the limit is " +
-         std::to_string(limit) + ", so that their GPU array fits the 128 MiB that OpenGL 4.5 "
-         "guarantees for a shader storage block)";
+template <class E>
+E enum_from_string(const std::string& text, bool& ok) {
+  for (E value : EnumNames<E>::values)
+    if (text == to_string(value)) return ok = true, value;
+  ok = false;
+  return E{};
 }
 
-Camera parse_camera(const Json& j, const std::string& file) {
-  ObjectReader r(j, "camera", file,
-                 {"position", "target", "up", "vfov_deg", "aperture_radius", "focus_distance"});
-  Camera c;
-  r.read("position", c.position);
-  r.read("target", c.target);
-  r.read("up", c.up);
-  r.read("vfov_deg", c.vfov_deg);
-  r.read("aperture_radius", c.aperture_radius);
-  r.read("focus_distance", c.focus_distance);
-  return c;
-}
-
-Texture parse_texture(const Json& j, const std::string& path, const std::string& file) {
-  ObjectReader r(j, path, file, {"name", "path"});
-  r.require("name");
-  r.require("path");
-  Texture t;
-  r.read("name", t.name);
-  r.read("path", t.path);
-  return t;
-}
-
-Material parse_material(const Json& j, const std::string& path, const std::string& file) {
-  ObjectReader r(j, path, file,
-                 {"name", "type", "color", "color_texture", "emission", "emission_texture",
-                  "roughness", "roughness_texture", "ior", "opacity"});
-  r.require("name");
-  Material m;
-  r.read("name", m.name);
-  if (const Json* type = r.find("type")) {
-    const std::string text = json_fields::read_string(*type, file, r.path("type"));
-    const auto parsed = material_type_from_string(text);
-    if (!parsed)
-      json_fields::fail(file, r.path("type"),
-                        "unknown material type " + quote_name(text) +
-                            " (expected matte, reflective, glossy or transparent)");
-    m.type = *parsed;
-  }
-  r.read("color", m.color);
-  r.read_optional_string("color_texture", m.color_texture);
-  r.read("emission", m.emission);
-  r.read_optional_string("emission_texture", m.emission_texture);
-  r.read("roughness", m.roughness);
-  r.read_optional_string("roughness_texture", m.roughness_texture);
-  r.read("ior", m.ior);
-  r.read("opacity", m.opacity);
-  return m;
-}
-
-Sphere parse_sphere(const Json& j, const std::string& path, const std::string& file) {
-  ObjectReader r(j, path, file, {"name", "center", "radius", "material"});
-  r.require("center");
-  r.require("radius");
-  r.require("material");
-  Sphere s;
-  r.read("name", s.name);
-  r.read("center", s.center);
-  r.read("radius", s.radius);
-  r.read("material", s.material);
-  return s;
-}
-
-Quad parse_quad(const Json& j, const std::string& path, const std::string& file) {
-  ObjectReader r(j, path, file, {"name", "material", "corners", "uvs"});
-  r.require("material");
-  r.require("corners");
-  Quad q;
-  r.read("name", q.name);
-  r.read("material", q.material);
-  auto read_rows = [&](const char* key, auto& out, auto read_row) {
-    const Json* rows = r.find(key);
+// One field of `out` from the object `r` reads; the scene.h default stays when it is absent.
+template <class F, class T>
+void read_field(const ObjectReader& r, const F& f, T& out, const std::string& file) {
+  using M = typename F::Type;
+  M& value = out.*f.member;
+  if constexpr (std::is_same_v<M, std::string>) {
+    if (f.has(kNullable)) r.read_optional_string(f.key, value);
+    else r.read(f.key, value);
+  } else if constexpr (std::is_same_v<M, float> || std::is_same_v<M, glm::vec3>) {
+    r.read(f.key, value);
+  } else if constexpr (std::is_enum_v<M>) {
+    if (const Json* v = r.find(f.key)) {
+      const std::string text = json_fields::read_string(*v, file, r.path(f.key));
+      bool ok = false;
+      value = enum_from_string<M>(text, ok);
+      if (!ok)
+        json_fields::fail(file, r.path(f.key),
+                          std::string("unknown ") + EnumNames<M>::noun + " " +
+                              json_fields::quote_name(text) + " (expected " + enum_choices<M>() + ")");
+    }
+  } else if constexpr (std::is_integral_v<M>) {
+    r.read_integer(f.key, static_cast<int64_t>(f.check.lo), static_cast<int64_t>(f.check.hi), value);
+  } else {  // std::array<glm::vec3, 4> or std::array<glm::vec2, 4>: quad corners and uvs
+    const Json* rows = r.find(f.key);
     if (!rows) return;
-    if (!rows->is_array() || rows->size() != out.size())
-      json_fields::fail(file, r.path(key), "expected an array of 4 points, got " +
-                                               json_fields::describe(*rows));
-    for (size_t i = 0; i < out.size(); ++i)
-      out[i] = read_row((*rows)[i], file, index_path(r.path(key), i));
-  };
-  read_rows("corners", q.corners, json_fields::read_vec3);
-  read_rows("uvs", q.uvs, json_fields::read_vec2);
-  return q;
+    if (!rows->is_array() || rows->size() != value.size())
+      json_fields::fail(file, r.path(f.key), "expected an array of 4 points, got " +
+                                                 json_fields::describe(*rows));
+    for (size_t i = 0; i < value.size(); ++i) {
+      const Json& row = (*rows)[i];
+      const std::string path = index_path(r.path(f.key), i);
+      if constexpr (std::is_same_v<M, std::array<glm::vec3, 4>>)
+        value[i] = json_fields::read_vec3(row, file, path);
+      else
+        value[i] = json_fields::read_vec2(row, file, path);
+    }
+  }
+}
+
+// An object of the file: unknown keys, then the required ones, then each field, in table order.
+template <class T>
+T parse_object(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file, keys_of<T>());
+  FieldTable<T>::visit([&](const auto& f) {
+    if (f.has(kRequired)) r.require(f.key);
+  });
+  T out;
+  FieldTable<T>::visit([&](const auto& f) { read_field(r, f, out, file); });
+  return out;
+}
+
+// The film's sides are read as any integer first (saturated to int64), then checked together
+// with a memory estimate (check_film_size).
+template <>
+Film parse_object<Film>(const Json& j, const std::string& path, const std::string& file) {
+  ObjectReader r(j, path, file, keys_of<Film>());
+  Film film;
+  std::array<int64_t, field_count<Film>()> sides{};
+  size_t n = 0;
+  FieldTable<Film>::visit([&](const auto& f) {
+    static_assert(std::is_same_v<typename std::decay_t<decltype(f)>::Type, int>);
+    const Json* v = r.find(f.key);
+    int64_t& side = sides[n++];
+    side = film.*f.member;
+    if (!v) return;
+    if (!v->is_number_integer())
+      json_fields::fail(file, r.path(f.key), "expected an integer, got " + json_fields::describe(*v));
+    side = v->is_number_unsigned() && v->get<uint64_t>() > uint64_t(INT64_MAX) ? INT64_MAX
+                                                                                : v->get<int64_t>();
+  });
+  if (const auto problem = check_film_size(sides[0], sides[1]))
+    json_fields::fail(file, problem->json_path, problem->problem);
+  n = 0;
+  FieldTable<Film>::visit([&](const auto& f) { film.*f.member = static_cast<int>(sides[n++]); });
+  return film;
+}
+
+// The largest list of T in a file (scene_validation.h).
+template <class T>
+constexpr size_t list_limit() {
+  if constexpr (std::is_same_v<T, Sphere>) return kMaxSpheres;
+  else if constexpr (std::is_same_v<T, Quad>) return kMaxQuads;
+  else return SIZE_MAX;
 }
 
 // Reads the array under `key` of the root object, one element at a time; an array longer
-// than `limit` is refused before any element is read.
-template <class T, class Parse>
-void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out, Parse parse,
-                const std::string& file, size_t limit = SIZE_MAX) {
+// than its limit is refused before any element is read.
+template <class T>
+void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out,
+                const std::string& file) {
   const Json* items = root.array(key);
-  if (items && items->size() > limit)
-    json_fields::fail(file, key, count_problem(items->size(), limit, key));
+  if (items && items->size() > list_limit<T>())
+    json_fields::fail(file, key, too_many_problem(items->size(), list_limit<T>(), key));
   if (items)
     for (size_t i = 0; i < items->size(); ++i)
-      out.push_back(parse((*items)[i], index_path(key, i), file));
+      out.push_back(parse_object<T>((*items)[i], index_path(key, i), file));
 }
 
-// ---- Validation: values and references of a complete scene. ----
+// ---- Writing: every field of every table, in table order. ----
 
-class Checker {
- public:
-  explicit Checker(const Scene& scene) : scene_(scene) {}
-  std::vector<ProjectError> problems;
-
-  void add(std::string path, std::string problem) {
-    problems.emplace_back("", std::move(path), std::move(problem));
-  }
-  bool finite(const std::string& path, float v) {
-    if (!std::isfinite(v)) add(path, "must be a finite number (got " + float_text(v) + ")");
-    return std::isfinite(v);
-  }
-  template <int N>
-  bool finite(const std::string& path, glm::vec<N, float> v) {
-    bool ok = true;
-    for (int i = 0; i < N; ++i) ok = finite(index_path(path, i), v[i]) && ok;
-    return ok;
-  }
-  void at_least(const std::string& path, float v, float min) {
-    if (finite(path, v) && !(v >= min))
-      add(path, "must be at least " + float_text(min) + " (got " + float_text(v) + ")");
-  }
-  void greater_than(const std::string& path, float v, float min) {
-    if (finite(path, v) && !(v > min))
-      add(path, "must be greater than " + float_text(min) + " (got " + float_text(v) + ")");
-  }
-  void in_unit_interval(const std::string& path, float v) {
-    if (finite(path, v) && !(v >= 0 && v <= 1))
-      add(path, "must be in [0, 1] (got " + float_text(v) + ")");
-  }
-  void non_negative(const std::string& path, glm::vec3 v) {
-    for (int i = 0; i < 3; ++i) at_least(index_path(path, i), v[i], 0);
-  }
-  void integer_in(const std::string& path, int64_t v, int64_t min, int64_t max) {
-    if (v < min || v > max)
-      add(path, json_fields::integer_range_problem(min, max, std::to_string(v)));
-  }
-  void not_empty(const std::string& path, const std::string& text) {
-    if (text.empty()) add(path, "must not be empty");
-  }
-  // Reports the second and later uses of a name within one list.
-  void unique(std::map<std::string, std::string>& seen, const std::string& path,
-              const std::string& name, const char* what) {
-    if (name.empty()) return;
-    auto [it, inserted] = seen.emplace(name, path);
-    if (!inserted)
-      add(path, std::string("duplicate ") + what + " name " + quote_name(name) + " (first at " +
-                    it->second + ")");
-  }
-  void material_ref(const std::string& path, const std::string& name) {
-    if (find_material(scene_, name) < 0) add(path, "unknown material " + quote_name(name));
-  }
-  void texture_ref(const std::string& path, const std::string& name) {
-    if (!name.empty() && find_texture(scene_, name) < 0)
-      add(path, "unknown texture " + quote_name(name));
-  }
-  // The files themselves are checked by check_scene_images (scene_images.h).
-  void image_path(const std::string& path, const std::string& file) {
-    // The OS would see only the part before the NUL: another file than the one named.
-    if (file.find('\0') != std::string::npos)
-      add(path, "contains a NUL character (\\u0000), which no file name can hold");
-  }
-
- private:
-  const Scene& scene_;
-};
-
-void check_camera(Checker& c, const Camera& cam) {
-  const bool position = c.finite("camera.position", cam.position);
-  const bool points = c.finite("camera.target", cam.target) && position;
-  const bool up = c.finite("camera.up", cam.up);
-  if (c.finite("camera.vfov_deg", cam.vfov_deg) && !(cam.vfov_deg > 0 && cam.vfov_deg < 180))
-    c.add("camera.vfov_deg", "must be in (0, 180) degrees (got " + float_text(cam.vfov_deg) + ")");
-  c.at_least("camera.aperture_radius", cam.aperture_radius, 0);
-  c.greater_than("camera.focus_distance", cam.focus_distance, 0);
-  if (!points) return;
-  const glm::dvec3 view = glm::dvec3(cam.target) - glm::dvec3(cam.position);
-  if (view == glm::dvec3(0)) {
-    c.add("camera.target", "must differ from camera.position");
-  } else if (up) {
-    const glm::dvec3 u(cam.up);
-    // |sin| of the angle between up and the view direction
-    if (u == glm::dvec3(0) ||
-        glm::length(glm::cross(glm::normalize(view), glm::normalize(u))) <= 1e-6)
-      c.add("camera.up", "must not be zero or parallel to the view direction");
+template <class M>
+Json value_to_json(const M& value, unsigned flags) {
+  if constexpr (std::is_same_v<M, std::string>) {
+    return (flags & kNullable) && value.empty() ? Json(nullptr) : Json(value);
+  } else if constexpr (std::is_same_v<M, float>) {
+    return json_fields::float_to_json(value);
+  } else if constexpr (std::is_same_v<M, glm::vec2> || std::is_same_v<M, glm::vec3>) {
+    return json_fields::vec_to_json(value);
+  } else if constexpr (std::is_enum_v<M>) {
+    return to_string(value);
+  } else if constexpr (std::is_integral_v<M>) {
+    return value;
+  } else {  // arrays of points
+    Json rows = Json::array();
+    for (const auto& row : value) rows.push_back(json_fields::vec_to_json(row));
+    return rows;
   }
 }
 
-// A quad's triangles (p0, p1, p2) and (p1, p3, p2) must each have an area: |cross| of two edges
-// above 1e-12 * scale^2, where scale is the largest distance between two corners.
-void check_quad_area(Checker& c, const std::string& path, const std::array<glm::vec3, 4>& p) {
-  std::array<glm::dvec3, 4> q;
-  for (int i = 0; i < 4; ++i) q[i] = p[i];
-  double scale2 = 0;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j) scale2 = std::max(scale2, glm::dot(q[i] - q[j], q[i] - q[j]));
-  const double tolerance = 1e-12 * scale2;
-  if (glm::length(glm::cross(q[1] - q[0], q[2] - q[0])) <= tolerance)
-    c.add(path, "zero-area quad (triangle p0, p1, p2 is degenerate)");
-  else if (glm::length(glm::cross(q[3] - q[1], q[2] - q[1])) <= tolerance)
-    c.add(path, "zero-area quad (triangle p1, p3, p2 is degenerate)");
+template <class T>
+Json object_to_json(const T& object) {
+  Json j = Json::object();
+  FieldTable<T>::visit([&](const auto& f) { j[f.key] = value_to_json(object.*f.member, f.flags); });
+  return j;
+}
+
+// Calls fn(json_path, text) for every string field of the scene, in file order, with `flag`
+// (or every string when flag is 0). S is Scene or const Scene.
+template <class S, class Fn>
+void for_each_string(S& scene, unsigned flag, Fn&& fn) {
+  auto object = [&](const std::string& path, auto& o) {
+    using T = std::remove_const_t<std::remove_reference_t<decltype(o)>>;
+    FieldTable<T>::visit([&](const auto& f) {
+      if constexpr (std::is_same_v<typename std::decay_t<decltype(f)>::Type, std::string>)
+        if (flag == 0 || f.has(flag)) fn(child_path(path, f.key), o.*f.member);
+    });
+  };
+  visit_scene_parts([&](const char* key, auto member) {
+    auto& part = scene.*member;
+    if constexpr (IsVector<std::remove_const_t<std::remove_reference_t<decltype(part)>>>::value) {
+      for (size_t i = 0; i < part.size(); ++i) object(index_path(key, i), part[i]);
+    } else {
+      object(key, part);
+    }
+  });
 }
 
 // A relative asset path rewritten for a new folder; both folders are absolute.
@@ -282,20 +219,6 @@ fs::path folder_identity(const fs::path& folder) {
 
 }  // namespace
 
-std::string bytes_text(double bytes) {
-  const bool gib = bytes >= double(1 << 30);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.1f %s", bytes / double(gib ? 1 << 30 : 1 << 20),
-                gib ? "GiB" : "MiB");
-  return buffer;
-}
-
-ProjectError::ProjectError(std::string file_, std::string json_path_, std::string problem_)
-    : std::runtime_error(error_message(file_, json_path_, problem_)),
-      file(std::move(file_)),
-      json_path(json_fields::clip(json_path_, kMaxMessagePath)),
-      problem(json_fields::clip(problem_, kMaxMessageProblem)) {}
-
 Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file,
                       const fs::path& base_dir, bool check_files) {
   using json_fields::fail;
@@ -312,54 +235,20 @@ Scene scene_from_json(const nlohmann::ordered_json& doc, const std::string& file
     fail(file, "version",
          "unsupported version " + version->dump() + " (this program reads version 1)");
 
-  ObjectReader root(doc, "", file,
-                    {"format", "version", "camera", "film", "render", "display", "environment",
-                     "textures", "materials", "spheres", "quads"});
+  std::vector<std::string_view> root_keys = {"format", "version"};
+  visit_scene_parts([&](const char* key, auto) { root_keys.push_back(key); });
+  ObjectReader root(doc, "", file, root_keys);
   Scene s;
   s.base_dir = base_dir;
-  if (const Json* j = root.find("camera")) s.camera = parse_camera(*j, file);
-  if (const Json* j = root.find("film")) {
-    ObjectReader r(*j, "film", file, {"width", "height"});
-    // Any integer first (saturated to int64), then the limits with a memory estimate.
-    auto side = [&](const char* key, int current) -> int64_t {
-      const Json* v = r.find(key);
-      if (!v) return current;
-      if (!v->is_number_integer()) fail(file, r.path(key), "expected an integer, got " + json_fields::describe(*v));
-      if (v->is_number_unsigned() && v->get<uint64_t>() > uint64_t(INT64_MAX)) return INT64_MAX;
-      return v->get<int64_t>();
-    };
-    const int64_t width = side("width", s.film.width), height = side("height", s.film.height);
-    if (const auto problem = check_film_size(width, height))
-      fail(file, problem->json_path, problem->problem);
-    s.film = {static_cast<int>(width), static_cast<int>(height)};
-  }
-  if (const Json* j = root.find("render")) {
-    ObjectReader r(*j, "render", file, {"max_bounces", "seed"});
-    r.read_integer("max_bounces", 0, kMaxBounces, s.render.max_bounces);
-    r.read_integer("seed", 0, UINT32_MAX, s.render.seed);
-  }
-  if (const Json* j = root.find("display")) {
-    ObjectReader r(*j, "display", file, {"exposure", "tonemap"});
-    r.read("exposure", s.display.exposure);
-    std::string tonemap = to_string(s.display.tonemap);
-    r.read("tonemap", tonemap);
-    const auto parsed = tonemap_from_string(tonemap);
-    if (!parsed)
-      fail(file, "display.tonemap",
-           "unknown tonemap " + quote_name(tonemap) + " (expected filmic or linear)");
-    s.display.tonemap = *parsed;
-  }
-  if (const Json* j = root.find("environment")) {
-    ObjectReader r(*j, "environment", file, {"color", "texture", "intensity", "rotation_deg"});
-    r.read("color", s.environment.color);
-    r.read_optional_string("texture", s.environment.texture);
-    r.read("intensity", s.environment.intensity);
-    r.read("rotation_deg", s.environment.rotation_deg);
-  }
-  parse_list(root, "textures", s.textures, parse_texture, file);
-  parse_list(root, "materials", s.materials, parse_material, file);
-  parse_list(root, "spheres", s.spheres, parse_sphere, file, kMaxSpheres);
-  parse_list(root, "quads", s.quads, parse_quad, file, kMaxQuads);
+  visit_scene_parts([&](const char* key, auto member) {
+    auto& part = s.*member;
+    using Part = std::remove_reference_t<decltype(part)>;
+    if constexpr (IsVector<Part>::value) {
+      parse_list(root, key, part, file);
+    } else if (const Json* j = root.find(key)) {
+      part = parse_object<Part>(*j, key, file);
+    }
+  });
 
   const auto problems = validate_scene(s, check_files);
   if (!problems.empty()) fail(file, problems.front().json_path, problems.front().problem);
@@ -371,157 +260,20 @@ Scene scene_from_json(const nlohmann::json& doc, const std::string& file_label,
   return scene_from_json(nlohmann::ordered_json(doc), file_label, base_dir, check_files);
 }
 
-std::optional<ProjectError> check_film_size(int64_t width, int64_t height) {
-  const bool positive = width >= 1 && height >= 1;
-  const double pixels = double(width) * double(height);
-  std::string memory;
-  if (positive && pixels > double(kMaxFilmPixels))
-    memory = "a " + std::to_string(width) + "x" + std::to_string(height) + " film would need " +
-             bytes_text(pixels * kFilmBytesPerPixel) + " of GPU buffers (" +
-             std::to_string(kFilmBytesPerPixel) + " bytes per pixel), the limit is " +
-             bytes_text(double(kMaxFilmPixels) * kFilmBytesPerPixel) + " (" +
-             std::to_string(kMaxFilmPixels) + " pixels, e.g. 8192x8192)";
-  for (const auto& [key, side] : {std::pair{"film.width", width}, std::pair{"film.height", height}})
-    if (side < 1 || side > kMaxFilmSide)
-      return ProjectError("", key,
-                          json_fields::integer_range_problem(1, kMaxFilmSide, std::to_string(side)) +
-                              (memory.empty() ? "" : "; " + memory));
-  if (!memory.empty()) return ProjectError("", "film", memory);
-  return std::nullopt;
-}
-
-std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
-  Checker c(scene);
-  check_camera(c, scene.camera);
-  if (const auto problem = check_film_size(scene.film.width, scene.film.height))
-    c.problems.push_back(*problem);
-  if (scene.spheres.size() > kMaxSpheres)
-    c.add("spheres", count_problem(scene.spheres.size(), kMaxSpheres, "spheres"));
-  if (scene.quads.size() > kMaxQuads)
-    c.add("quads", count_problem(scene.quads.size(), kMaxQuads, "quads"));
-  c.integer_in("render.max_bounces", scene.render.max_bounces, 0, kMaxBounces);
-  c.finite("display.exposure", scene.display.exposure);
-
-  const Environment& env = scene.environment;
-  c.non_negative("environment.color", env.color);
-  c.image_path("environment.texture", env.texture);
-  c.at_least("environment.intensity", env.intensity, 0);
-  c.finite("environment.rotation_deg", env.rotation_deg);
-
-  std::map<std::string, std::string> texture_names, material_names;
-  for (size_t i = 0; i < scene.textures.size(); ++i) {
-    const Texture& t = scene.textures[i];
-    const std::string path = index_path("textures", i);
-    c.not_empty(child_path(path, "name"), t.name);
-    c.unique(texture_names, child_path(path, "name"), t.name, "texture");
-    c.not_empty(child_path(path, "path"), t.path);
-    c.image_path(child_path(path, "path"), t.path);
-  }
-  for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    const std::string path = index_path("materials", i);
-    auto field = [&](const char* key) { return child_path(path, key); };
-    c.not_empty(field("name"), m.name);
-    c.unique(material_names, field("name"), m.name, "material");
-    c.non_negative(field("color"), m.color);
-    c.texture_ref(field("color_texture"), m.color_texture);
-    c.non_negative(field("emission"), m.emission);
-    c.texture_ref(field("emission_texture"), m.emission_texture);
-    c.in_unit_interval(field("roughness"), m.roughness);
-    c.texture_ref(field("roughness_texture"), m.roughness_texture);
-    c.at_least(field("ior"), m.ior, 1);
-    c.in_unit_interval(field("opacity"), m.opacity);
-  }
-  for (size_t i = 0; i < scene.spheres.size(); ++i) {
-    const Sphere& s = scene.spheres[i];
-    const std::string path = index_path("spheres", i);
-    c.finite(child_path(path, "center"), s.center);
-    c.greater_than(child_path(path, "radius"), s.radius, 0);
-    c.material_ref(child_path(path, "material"), s.material);
-  }
-  for (size_t i = 0; i < scene.quads.size(); ++i) {
-    const Quad& q = scene.quads[i];
-    const std::string path = index_path("quads", i);
-    c.material_ref(child_path(path, "material"), q.material);
-    const std::string corners = child_path(path, "corners");
-    bool corners_finite = true;
-    for (size_t k = 0; k < 4; ++k)
-      corners_finite = c.finite(index_path(corners, k), q.corners[k]) && corners_finite;
-    if (corners_finite) check_quad_area(c, corners, q.corners);
-    for (size_t k = 0; k < 4; ++k) c.finite(index_path(child_path(path, "uvs"), k), q.uvs[k]);
-  }
-  for (ProjectError& problem : check_float_limits(scene)) c.problems.push_back(std::move(problem));
-  if (check_files)
-    for (ProjectError& problem : check_scene_images(scene)) c.problems.push_back(std::move(problem));
-  return c.problems;
-}
-
 nlohmann::ordered_json scene_to_json(const Scene& s) {
-  using json_fields::float_to_json;
-  using json_fields::vec_to_json;
-  auto name_or_null = [](const std::string& name) {
-    return name.empty() ? Json(nullptr) : Json(name);
-  };
   Json j;
   j["format"] = "glint-project";
   j["version"] = 1;
-  Json& cam = j["camera"];
-  cam["position"] = vec_to_json(s.camera.position);
-  cam["target"] = vec_to_json(s.camera.target);
-  cam["up"] = vec_to_json(s.camera.up);
-  cam["vfov_deg"] = float_to_json(s.camera.vfov_deg);
-  cam["aperture_radius"] = float_to_json(s.camera.aperture_radius);
-  cam["focus_distance"] = float_to_json(s.camera.focus_distance);
-  j["film"]["width"] = s.film.width;
-  j["film"]["height"] = s.film.height;
-  j["render"]["max_bounces"] = s.render.max_bounces;
-  j["render"]["seed"] = s.render.seed;
-  j["display"]["exposure"] = float_to_json(s.display.exposure);
-  j["display"]["tonemap"] = to_string(s.display.tonemap);
-  Json& env = j["environment"];
-  env["color"] = vec_to_json(s.environment.color);
-  env["texture"] = name_or_null(s.environment.texture);
-  env["intensity"] = float_to_json(s.environment.intensity);
-  env["rotation_deg"] = float_to_json(s.environment.rotation_deg);
-
-  Json& textures = j["textures"] = Json::array();
-  for (const Texture& t : s.textures) {
-    Json& e = textures.emplace_back();
-    e["name"] = t.name;
-    e["path"] = t.path;
-  }
-  Json& materials = j["materials"] = Json::array();
-  for (const Material& m : s.materials) {
-    Json& e = materials.emplace_back();
-    e["name"] = m.name;
-    e["type"] = to_string(m.type);
-    e["color"] = vec_to_json(m.color);
-    e["color_texture"] = name_or_null(m.color_texture);
-    e["emission"] = vec_to_json(m.emission);
-    e["emission_texture"] = name_or_null(m.emission_texture);
-    e["roughness"] = float_to_json(m.roughness);
-    e["roughness_texture"] = name_or_null(m.roughness_texture);
-    e["ior"] = float_to_json(m.ior);
-    e["opacity"] = float_to_json(m.opacity);
-  }
-  Json& spheres = j["spheres"] = Json::array();
-  for (const Sphere& sp : s.spheres) {
-    Json& e = spheres.emplace_back();
-    e["name"] = sp.name;
-    e["center"] = vec_to_json(sp.center);
-    e["radius"] = float_to_json(sp.radius);
-    e["material"] = sp.material;
-  }
-  Json& quads = j["quads"] = Json::array();
-  for (const Quad& q : s.quads) {
-    Json& e = quads.emplace_back();
-    e["name"] = q.name;
-    e["material"] = q.material;
-    Json& corners = e["corners"] = Json::array();
-    for (const glm::vec3& p : q.corners) corners.push_back(vec_to_json(p));
-    Json& uvs = e["uvs"] = Json::array();
-    for (const glm::vec2& uv : q.uvs) uvs.push_back(vec_to_json(uv));
-  }
+  visit_scene_parts([&](const char* key, auto member) {
+    const auto& part = s.*member;
+    using Part = std::remove_const_t<std::remove_reference_t<decltype(part)>>;
+    if constexpr (IsVector<Part>::value) {
+      Json& list = j[key] = Json::array();
+      for (const auto& item : part) list.push_back(object_to_json(item));
+    } else {
+      j[key] = object_to_json(part);
+    }
+  });
   return j;
 }
 
@@ -536,8 +288,8 @@ Scene rebase_asset_paths(const Scene& scene, const fs::path& new_base_dir) {
   if (scene.base_dir == new_base_dir) return out;
   const fs::path from = folder_identity(scene.base_dir), to = folder_identity(new_base_dir);
   if (from == to) return out;  // same folder: keep the paths exactly as they are
-  for (Texture& t : out.textures) t.path = rebase_path(t.path, from, to);
-  out.environment.texture = rebase_path(out.environment.texture, from, to);
+  for_each_string(out, kAssetPath,
+                  [&](const std::string&, std::string& path) { path = rebase_path(path, from, to); });
   return out;
 }
 
@@ -548,27 +300,12 @@ Scene load_project_text(const std::string& text, const std::string& file_label,
 }
 
 // The JSON path of the first string of the scene that is not valid UTF-8, or "".
-std::string first_non_utf8_string(const Scene& s) {
-  using json_fields::is_valid_utf8;
-  if (!is_valid_utf8(s.environment.texture)) return "environment.texture";
-  for (size_t i = 0; i < s.textures.size(); ++i)
-    for (const auto& [key, text] : {std::pair{"name", &s.textures[i].name}, std::pair{"path", &s.textures[i].path}})
-      if (!is_valid_utf8(*text)) return child_path(index_path("textures", i), key);
-  for (size_t i = 0; i < s.materials.size(); ++i) {
-    const Material& m = s.materials[i];
-    for (const auto& [key, text] :
-         {std::pair{"name", &m.name}, std::pair{"color_texture", &m.color_texture},
-          std::pair{"emission_texture", &m.emission_texture},
-          std::pair{"roughness_texture", &m.roughness_texture}})
-      if (!is_valid_utf8(*text)) return child_path(index_path("materials", i), key);
-  }
-  for (size_t i = 0; i < s.spheres.size(); ++i)
-    for (const auto& [key, text] : {std::pair{"name", &s.spheres[i].name}, std::pair{"material", &s.spheres[i].material}})
-      if (!is_valid_utf8(*text)) return child_path(index_path("spheres", i), key);
-  for (size_t i = 0; i < s.quads.size(); ++i)
-    for (const auto& [key, text] : {std::pair{"name", &s.quads[i].name}, std::pair{"material", &s.quads[i].material}})
-      if (!is_valid_utf8(*text)) return child_path(index_path("quads", i), key);
-  return "";
+static std::string first_non_utf8_string(const Scene& s) {
+  std::string bad;
+  for_each_string(s, 0, [&](const std::string& path, const std::string& text) {
+    if (bad.empty() && !json_fields::is_valid_utf8(text)) bad = path;
+  });
+  return bad;
 }
 
 static std::string project_size_problem(uintmax_t size) {

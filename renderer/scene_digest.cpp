@@ -1,6 +1,9 @@
 #include "renderer/scene_digest.h"
 
 #include <system_error>
+#include <type_traits>
+
+#include "renderer/scene_fields.h"
 
 namespace glint {
 
@@ -43,6 +46,43 @@ void file_stamp(Hasher& h, const std::filesystem::path& path) {
   h.value(static_cast<uint64_t>(ec ? 0 : time.time_since_epoch().count()));
 }
 
+// The values of an object's fields (scene_fields.h) but labels, and the files of asset paths.
+template <class T>
+void hash_object(Hasher& h, const Scene& scene, const T& object) {
+  FieldTable<T>::visit([&](const auto& f) {
+    if (f.has(kLabel)) return;
+    const auto& value = object.*f.member;
+    using M = typename std::decay_t<decltype(f)>::Type;
+    if constexpr (std::is_enum_v<M>) {
+      h.value(static_cast<int>(value));
+    } else if constexpr (std::is_same_v<M, std::array<glm::vec3, 4>> ||
+                         std::is_same_v<M, std::array<glm::vec2, 4>>) {
+      for (const auto& row : value) h.value(row);
+    } else {
+      h.value(value);
+    }
+    if constexpr (std::is_same_v<M, std::string>)
+      if (f.has(kAssetPath) && !value.empty()) file_stamp(h, resolve_asset_path(scene, value));
+  });
+}
+
+template <class T>
+void hash_list(Hasher& h, const Scene& scene, const std::vector<T>& list) {
+  h.value(static_cast<uint64_t>(list.size()));
+  for (const T& object : list) hash_object(h, scene, object);
+}
+
+template <class... Parts>
+uint64_t digest_of(const Scene& scene, const Parts&... parts) {
+  Hasher h;
+  auto one = [&](const auto& part) {
+    if constexpr (IsVector<std::decay_t<decltype(part)>>::value) hash_list(h, scene, part);
+    else hash_object(h, scene, part);
+  };
+  (one(parts), ...);
+  return h.result();
+}
+
 }  // namespace
 
 uint64_t SceneDigests::radiance() const {
@@ -52,83 +92,17 @@ uint64_t SceneDigests::radiance() const {
 }
 
 SceneDigests digest_scene(const Scene& scene) {
+  // Each part of the scene in one digest; the film is in none: GpuRenderer::sync is given the
+  // size to render at (the film's or another) and restarts the accumulation on a new size.
+  static_assert(scene_part_count() == 9, "a new part of Scene needs its digest here");
   SceneDigests d;
-  {
-    Hasher h;
-    h.value(static_cast<uint64_t>(scene.spheres.size()));
-    for (const auto& s : scene.spheres) {
-      h.value(s.center);
-      h.value(s.radius);
-      h.value(s.material);
-    }
-    h.value(static_cast<uint64_t>(scene.quads.size()));
-    for (const auto& q : scene.quads) {
-      for (const auto& c : q.corners) h.value(c);
-      for (const auto& uv : q.uvs) h.value(uv);
-      h.value(q.material);
-    }
-    d.geometry = h.result();
-  }
-  {
-    Hasher h;
-    h.value(static_cast<uint64_t>(scene.materials.size()));
-    for (const auto& m : scene.materials) {
-      h.value(m.name);
-      h.value(static_cast<int>(m.type));
-      h.value(m.color);
-      h.value(m.color_texture);
-      h.value(m.emission);
-      h.value(m.emission_texture);
-      h.value(m.roughness);
-      h.value(m.roughness_texture);
-      h.value(m.ior);
-      h.value(m.opacity);
-    }
-    d.materials = h.result();
-  }
-  {
-    Hasher h;
-    h.value(static_cast<uint64_t>(scene.textures.size()));
-    for (const auto& t : scene.textures) {
-      h.value(t.name);
-      h.value(t.path);
-      file_stamp(h, resolve_asset_path(scene, t.path));
-    }
-    d.textures = h.result();
-  }
-  {
-    Hasher h;
-    const auto& e = scene.environment;
-    h.value(e.color);
-    h.value(e.texture);
-    if (!e.texture.empty()) file_stamp(h, resolve_asset_path(scene, e.texture));
-    h.value(e.intensity);
-    h.value(e.rotation_deg);
-    d.environment = h.result();
-  }
-  {
-    Hasher h;
-    const auto& c = scene.camera;
-    h.value(c.position);
-    h.value(c.target);
-    h.value(c.up);
-    h.value(c.vfov_deg);
-    h.value(c.aperture_radius);
-    h.value(c.focus_distance);
-    d.camera = h.result();
-  }
-  {
-    Hasher h;
-    h.value(scene.render.max_bounces);
-    h.value(scene.render.seed);
-    d.settings = h.result();
-  }
-  {
-    Hasher h;
-    h.value(scene.display.exposure);
-    h.value(static_cast<int>(scene.display.tonemap));
-    d.display = h.result();
-  }
+  d.geometry = digest_of(scene, scene.spheres, scene.quads);
+  d.materials = digest_of(scene, scene.materials);
+  d.textures = digest_of(scene, scene.textures);
+  d.environment = digest_of(scene, scene.environment);
+  d.camera = digest_of(scene, scene.camera);
+  d.settings = digest_of(scene, scene.render);
+  d.display = digest_of(scene, scene.display);
   return d;
 }
 

@@ -22,6 +22,9 @@ struct SceneDigests {
   uint64_t radiance() const;
 };
 
+// Hashes every field of the tables of renderer/scene_fields.h but labels (kLabel: object names),
+// and the size and time of each asset file; the film is in no digest (the renderer is given its
+// size with each sync).
 SceneDigests digest_scene(const Scene& scene);
 
 // FNV-1a, 64 bits: a small incremental hasher for plain values.

@@ -12,6 +12,7 @@
 #include "renderer/float_limits.h"
 #include "renderer/image.h"
 #include "renderer/json_fields.h"
+#include "renderer/scene_validation.h"
 #include "renderer/texture_cache.h"
 
 namespace glint {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "renderer/project_file.h"
+#include "renderer/project_error.h"
 #include "renderer/scene.h"
 
 namespace glint {

@@ -16,6 +16,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {

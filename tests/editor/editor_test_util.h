@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/temp_dir.h"
 
 namespace glint::test {

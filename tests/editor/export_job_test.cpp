@@ -8,6 +8,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {

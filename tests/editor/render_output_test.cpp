@@ -16,6 +16,7 @@
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/small_tmpfs.h"
 
 namespace glint {

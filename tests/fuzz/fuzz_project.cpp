@@ -12,6 +12,7 @@
 #include <string>
 
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path dir = GLINT_PROJECTS_DIR;

@@ -11,6 +11,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
 
 namespace glint::soak {

@@ -18,6 +18,7 @@
 
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/image_fixtures.h"
 #include "tests/temp_dir.h"
 
@@ -585,6 +586,54 @@ TEST(MalformedInput, AMillionSpheresLoad) {
   RecordProperty("load_seconds", std::to_string(seconds));
   std::printf("10^6 spheres (%.0f MB of JSON) loaded in %.2f s\n", text.size() / 1e6, seconds);
 }
+
+// Degenerate quads are rejected on load, at every scale, with an error naming the file and the
+// JSON path; quads that are tiny, huge or far from the origin but have an area load fine
+// (the area test is relative to the quad's own size). A hard case (`ctest -R hard_`).
+TEST(hard_Load, DegenerateQuadsAreRejectedNamingThePath) {
+  TempDir tmp;
+  auto write = [&](const std::string& corners) {
+    const fs::path file = tmp / "degenerate.glint";
+    std::ofstream(file) << R"({"format": "glint-project", "version": 1,
+      "materials": [{"name": "m"}],
+      "quads": [{"name": "ok", "material": "m", "corners": [[0,0,0],[0,1,0],[1,0,0],[1,1,0]]},
+                {"name": "bad", "material": "m", "corners": )" << corners << "}]}";
+    return file;
+  };
+  const std::vector<std::string> degenerate = {
+      "[[0,0,0],[1,1,1],[2,2,2],[3,3,3]]",              // collinear
+      "[[5,5,5],[5,5,5],[5,5,5],[5,5,5]]",              // one point
+      "[[0,0,0],[1,0,0],[0,1,0],[1,0,0]]",              // p3 = p1: second triangle empty
+      "[[0,0,0],[0,0,0],[1,0,0],[1,1,0]]",              // p1 = p0: first triangle empty
+      "[[1e-6,0,0],[0,1e-6,0],[2e-6,-1e-6,0],[1e-6,1e-6,0]]",  // collinear and tiny
+      "[[1e5,0,0],[1e5,1e3,0],[1e5,2e3,0],[1e5,3e3,0]]",       // collinear and far
+      // Distinct in the file, equal once rounded to float (ulp(1e6) = 0.0625): a line.
+      "[[1000000,0,0],[1000000.01,0,0],[1000000,0,5],[1000000.01,0,5]]",
+  };
+  for (const std::string& corners : degenerate) {
+    const fs::path file = write(corners);
+    try {
+      load_project(file);
+      ADD_FAILURE() << "accepted " << corners;
+    } catch (const ProjectError& e) {
+      EXPECT_EQ(e.file, file.string()) << corners;
+      EXPECT_EQ(e.json_path, "quads[1].corners") << corners;
+      EXPECT_NE(e.problem.find("zero-area quad"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(file.string() + ": quads[1].corners: zero-area"), std::string::npos)
+          << e.what();
+    }
+  }
+  const std::vector<std::string> valid = {
+      "[[0,0,0],[0,1e-6,0],[1e-6,0,0],[1e-6,1e-6,0]]",            // tiny
+      "[[-1e5,0,-1e5],[-1e5,0,1e5],[1e5,0,-1e5],[1e5,0,1e5]]",    // huge
+      "[[1e5,1e5,1e5],[1e5,100001,1e5],[100001,1e5,1e5],[100001,100001,1e5]]",  // far
+      "[[0,0,0],[3,0.1,0],[1,2,0],[4,2.1,0]]",                     // sheared parallelogram
+  };
+  for (const std::string& corners : valid) {
+    EXPECT_NO_THROW(load_project(write(corners))) << corners;
+  }
+}
+
 
 }  // namespace
 }  // namespace glint

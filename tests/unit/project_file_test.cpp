@@ -10,6 +10,7 @@
 
 #include "renderer/json_fields.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/temp_dir.h"
 
 namespace glint {

@@ -1,12 +1,12 @@
 // Reset semantics by digests: every radiance edit changes the radiance digest; display edits
-// change only the display digest.
+// change only the display digest (edits as the editor makes them; scene_fields_test.cpp changes
+// every field of the tables one at a time).
 #include <functional>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-#include "renderer/gpu_scene.h"
 #include "renderer/scene_digest.h"
 
 namespace glint {
@@ -73,21 +73,6 @@ TEST(SceneDigest, DisplayEditsNeverChangeTheRadianceDigest) {
   // Names of objects do not affect radiance either.
   s.spheres[0].name = "renamed";
   EXPECT_EQ(digest_scene(s).radiance(), base.radiance());
-}
-
-TEST(GpuScene, PacksOneLayerPerTextureAndEncoding) {
-  Scene s = sample_scene();
-  s.materials.push_back({.name = "rough", .roughness_texture = "wood"});
-  s.materials.push_back({.name = "same", .color_texture = "wood"});
-  PackedScene p = pack_scene(s);
-  ASSERT_EQ(p.layers.size(), 2u);  // wood as sRGB colour, wood as linear roughness
-  EXPECT_EQ(p.materials[0].layers.x, 0);
-  EXPECT_EQ(p.materials[1].layers.z, 1);
-  EXPECT_EQ(p.materials[2].layers.x, 0);
-  EXPECT_EQ(p.materials[1].layers.x, -1);
-  EXPECT_EQ(p.layers[1].encoding, ColorEncoding::linear);
-  // The quad's normal follows docs/DESIGN.md: normalize(cross(p1 - p0, p2 - p0)).
-  EXPECT_FLOAT_EQ(p.quads[0].normal.z, -1.0f);
 }
 
 }  // namespace

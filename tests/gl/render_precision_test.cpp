@@ -1,6 +1,6 @@
 // Numerical stability on hard cases, rendered by the GPU path tracer on tiny
 // images (headless EGL; llvmpipe in CI). `ctest -R hard_` runs these with the CPU ones
-// (tests/unit/hard_cases_test.cpp). Statistical tolerances come from the sample count: either
+// (tests/unit/shader_precision_test.cpp). Statistical tolerances come from the sample count: either
 // 4 standard errors of an image mean, or the difference between two independent renders
 // (two seeds), which is the noise level of the sample count used.
 #include <cmath>
@@ -11,6 +11,7 @@
 #include "renderer/camera_frame.h"
 #include "renderer/loop_budget.h"
 #include "renderer/project_file.h"
+#include "renderer/scene_validation.h"
 #include "tests/gl/gl_test_support.h"
 
 namespace glint {

@@ -1,12 +1,10 @@
-// Numerical stability on hard cases, on the CPU: the shared shader maths of
-// shaders/lib compiled as C++ (float unless said otherwise, as the GPU runs it), and the
-// project loader. `ctest -R hard_` runs these with the GL ones (tests/gl/hard_cases_test.cpp).
+// Numerical stability on hard cases, on the CPU: the shared shader maths of shaders/lib
+// compiled as C++ (float unless said otherwise, as the GPU runs it). `ctest -R hard_` runs
+// these with the rendered ones (tests/gl/render_precision_test.cpp) and the loader's
+// (hard_Load in malformed_input_test.cpp).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <random>
 #include <string>
@@ -14,7 +12,6 @@
 
 #include <glm/glm.hpp>
 
-#include "renderer/project_file.h"
 #include "shader_test_util.h"
 
 namespace glint::shader_test {
@@ -493,70 +490,6 @@ TEST(hard_Roughness, NearZeroMatchesTheMirror) {
       EXPECT_NEAR(mean, ms.weight[c], 0.01 * ms.weight[c] + 4.0 * se) << "cos_o " << cos_o << " c " << c;
     }
     EXPECT_GE(close, int(0.95 * n_samples)) << "cos_o " << cos_o;
-  }
-}
-
-// Degenerate quads are rejected on load, at every scale, with an error naming the file and the
-// JSON path; quads that are tiny, huge or far from the origin but have an area load fine
-// (the area test is relative to the quad's own size).
-class TempProject {
- public:
-  TempProject() {
-    std::random_device random;
-    dir_ = std::filesystem::temp_directory_path() /
-           ("glint_hard_cases_" + std::to_string(::getpid()) + "_" + std::to_string(random()));
-    std::filesystem::create_directories(dir_);
-  }
-  ~TempProject() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-  std::filesystem::path write(const std::string& corners) {
-    const std::filesystem::path file = dir_ / "degenerate.glint";
-    std::ofstream(file) << R"({"format": "glint-project", "version": 1,
-      "materials": [{"name": "m"}],
-      "quads": [{"name": "ok", "material": "m", "corners": [[0,0,0],[0,1,0],[1,0,0],[1,1,0]]},
-                {"name": "bad", "material": "m", "corners": )" << corners << "}]}";
-    return file;
-  }
-
- private:
-  std::filesystem::path dir_;
-};
-
-TEST(hard_Load, DegenerateQuadsAreRejectedNamingThePath) {
-  TempProject project;
-  const std::vector<std::string> degenerate = {
-      "[[0,0,0],[1,1,1],[2,2,2],[3,3,3]]",              // collinear
-      "[[5,5,5],[5,5,5],[5,5,5],[5,5,5]]",              // one point
-      "[[0,0,0],[1,0,0],[0,1,0],[1,0,0]]",              // p3 = p1: second triangle empty
-      "[[0,0,0],[0,0,0],[1,0,0],[1,1,0]]",              // p1 = p0: first triangle empty
-      "[[1e-6,0,0],[0,1e-6,0],[2e-6,-1e-6,0],[1e-6,1e-6,0]]",  // collinear and tiny
-      "[[1e5,0,0],[1e5,1e3,0],[1e5,2e3,0],[1e5,3e3,0]]",       // collinear and far
-      // Distinct in the file, equal once rounded to float (ulp(1e6) = 0.0625): a line.
-      "[[1000000,0,0],[1000000.01,0,0],[1000000,0,5],[1000000.01,0,5]]",
-  };
-  for (const std::string& corners : degenerate) {
-    const std::filesystem::path file = project.write(corners);
-    try {
-      load_project(file);
-      ADD_FAILURE() << "accepted " << corners;
-    } catch (const ProjectError& e) {
-      EXPECT_EQ(e.file, file.string()) << corners;
-      EXPECT_EQ(e.json_path, "quads[1].corners") << corners;
-      EXPECT_NE(e.problem.find("zero-area quad"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(file.string() + ": quads[1].corners: zero-area"), std::string::npos)
-          << e.what();
-    }
-  }
-  const std::vector<std::string> valid = {
-      "[[0,0,0],[0,1e-6,0],[1e-6,0,0],[1e-6,1e-6,0]]",            // tiny
-      "[[-1e5,0,-1e5],[-1e5,0,1e5],[1e5,0,-1e5],[1e5,0,1e5]]",    // huge
-      "[[1e5,1e5,1e5],[1e5,100001,1e5],[100001,1e5,1e5],[100001,100001,1e5]]",  // far
-      "[[0,0,0],[3,0.1,0],[1,2,0],[4,2.1,0]]",                     // sheared parallelogram
-  };
-  for (const std::string& corners : valid) {
-    EXPECT_NO_THROW(load_project(project.write(corners))) << corners;
   }
 }
 
