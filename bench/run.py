@@ -56,6 +56,10 @@ FULL = dict(width=128, max_spp=256, ref_spp=4096, seeds=3, mitsuba_ref_spp=4096,
             mitsuba_max_spp=256, ablation_spp=64, ablation_seeds=2, backend_spp=64, backend_repeats=3)
 QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=256, mitsuba_max_spp=16,
              ablation_spp=4, ablation_seeds=1, backend_spp=4, backend_repeats=1)
+# The per-sample gain of Glint's Sobol sampler over PCG on the direct-light Cornell box
+# (bench/qmc_gain.py; Burley 2020, JCGT 9(4), Fig. 1 reports about 12x in RMSE at 16 spp).
+QMC_ARGS = {"full": ["--ref-spp", "4096", "--seeds", "12", "--spp", "4", "16", "64"],
+            "quick": ["--ref-spp", "256", "--seeds", "3", "--spp", "4", "16", "--size", "32"]}
 # Sample counts of the equal-spp trial of Mitsuba's samplers (bench/mitsuba_samplers.py).
 TRIAL_SPP = {"full": (16, 64), "quick": (4, 8)}
 
@@ -339,6 +343,15 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
     if results_extra.get("race") is not None:
         L.append(race.markdown(results_extra["race"], results_extra["trial"]["winner"], fmt_s))
         L.append(mitsuba_samplers.markdown(results_extra["trial"]))
+    if results_extra.get("qmc"):
+        q = results_extra["qmc"]
+        L.append("## Glint's sampler at equal spp: Sobol (the default) against PCG\n")
+        L.append(f"`{q['command']}` (details, layout trials and tests in bench/SAMPLER.md): the "
+                 "Cornell box of projects/ with every material matte and max_bounces 1 (direct "
+                 "light, the case of Burley 2020, \"Practical Hash-based Owen Scrambling\", JCGT "
+                 "9(4), Fig. 1, which reports about 12x lower RMSE at 16 spp), RMSE against a "
+                 "high-spp Sobol reference, over seeds. Its output:\n")
+        L.append("```\n" + q["output"].strip() + "\n```\n")
     L.append("## Back ends: fragment against compute on this machine\n")
     if results_extra.get("backends"):
         L.append(f"`glint render --backend fragment` and `--backend compute`, each scene at the "
@@ -592,6 +605,7 @@ def main():
         ap.add_argument("--" + k.replace("_", "-"), type=int, help=f"(full {v}, quick {QUICK[k]})")
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--no-ablation", action="store_true", help="skip the per-technique renders")
+    ap.add_argument("--no-qmc", action="store_true", help="skip the Sobol-against-PCG table (bench/qmc_gain.py)")
     ap.add_argument("--no-llvm-download", action="store_true",
                     help="do not fetch libllvm19 when no system libLLVM works (use scalar_rgb)")
     a = ap.parse_args()
@@ -680,6 +694,16 @@ def main():
                     n, os.path.join(scenes_dir, n + ".glint"), os.path.join(work, n, "mitsuba"), cfg,
                     results[n]["glint"], results[n]["summary"], sampler=ld, ref_m=ref_m)}
             extra["race"] = race.rows(results, ld)
+    if not a.no_qmc:
+        log("sampler gain: bench/qmc_gain.py (Sobol against PCG, direct-light Cornell box)")
+        qargs = QMC_ARGS["quick" if a.quick else "full"] + ["--glint", glint, "--out", os.path.join(work, "qmc")]
+        r = subprocess.run([sys.executable, os.path.join(HERE, "qmc_gain.py")] + qargs,
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"bench/qmc_gain.py failed ({r.returncode}):\n{r.stderr}{r.stdout}")
+        extra["qmc"] = {"command": "python3 bench/qmc_gain.py " + " ".join(QMC_ARGS["quick" if a.quick else "full"]),
+                        "output": r.stdout}
+        log("  " + r.stdout.strip().splitlines()[-1])
     if backends.available(glint):
         log("back ends: fragment against compute")
         extra["backends"] = backends.measure(
@@ -700,7 +724,8 @@ def main():
     with open(os.path.join(out_dir, f"{prefix}results.json"), "w") as f:
         json.dump({"config": cfg, "env": env, "scenes": raw, "ablation": extra.get("ablation"),
                    "before_after": extra.get("before_after"), "mitsuba_samplers": extra.get("trial"),
-                   "race": extra.get("race"), "backends": extra.get("backends")}, f, indent=1)
+                   "race": extra.get("race"), "backends": extra.get("backends"),
+                   "qmc": extra.get("qmc")}, f, indent=1)
     log(f"wrote {os.path.join(out_dir, prefix + 'RESULTS.md')} in {fmt_s(time.time() - t_start)}")
 
 
