@@ -73,13 +73,11 @@ def const_env(color, intensity=1.0):
 
 
 def hdr_env(scene, assets, out_dir, rotation_deg):
-    """The environment of a scene lit by an HDR map: DIR's map with --assets, else the generated
-    sky; the path is relative to the folder the project is written to (absolute across drives)."""
-    path = os.path.join(assets, HDR_MAPS[scene]) if assets else GENERATED_SKY
-    try:
-        path = os.path.relpath(path, out_dir)
-    except ValueError:
-        pass
+    """The environment of a scene lit by an HDR map: DIR's map with --assets (an absolute path),
+    else the generated sky, relative to the folder the project is written to (the committed
+    scenes work from any clone)."""
+    path = os.path.abspath(os.path.join(assets, HDR_MAPS[scene])) if assets else \
+        os.path.relpath(GENERATED_SKY, out_dir)
     return {"color": [1, 1, 1], "texture": path.replace(os.sep, "/"), "intensity": 1,
             "rotation_deg": rotation_deg}
 
