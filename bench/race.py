@@ -10,19 +10,24 @@ fit makes it "fit".
 """
 import math
 
-import numpy as np
-
 RACE_TARGETS = (1e-2, 1e-3)
 GOAL = 0.5
 
 
 def _fit(x, y):
-    x, y = np.asarray(x, float), np.asarray(y, float)
-    ok = (x > 0) & (y > 0) & np.isfinite(x) & np.isfinite(y)
-    if ok.sum() < 2:
+    """log y = a + b log x by least squares over the finite positive points; (a, b) or None.
+    (Plain Python, so that bench/test_race.py needs no numpy.)"""
+    pts = [(math.log(u), math.log(v)) for u, v in zip(x, y)
+           if u > 0 and v > 0 and math.isfinite(u) and math.isfinite(v)]
+    if len(pts) < 2:
         return None
-    b, a = np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)
-    return float(a), float(b)
+    mx = sum(p[0] for p in pts) / len(pts)
+    my = sum(p[1] for p in pts) / len(pts)
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    if sxx == 0:
+        return None
+    b = sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx
+    return my - b * mx, b
 
 
 def time_to(summary, target):
@@ -35,8 +40,10 @@ def time_to(summary, target):
         return t[0], "<="
     if fit[1] >= 0:
         return None, "not converging"
-    secs = math.exp((math.log(target) - fit[0]) / fit[1])
-    return secs, ("fit" if e[-1] > target else "")
+    log_t = (math.log(target) - fit[0]) / fit[1]
+    if e[-1] > target and log_t > math.log(1e7):  # a nearly flat fit: past any useful time
+        return None, "fit: > 100 days"
+    return math.exp(log_t), ("fit" if e[-1] > target else "")
 
 
 def ratio(g, m):

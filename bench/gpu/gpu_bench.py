@@ -71,7 +71,10 @@ def time_to(points, target):
     b, a = np.polyfit(np.log([t for t, _ in tail]), np.log([e for _, e in tail]), 1)
     if b >= 0:
         return None, "not converging"
-    return math.exp((math.log(target) - a) / b), "fit"
+    log_t = (math.log(target) - a) / b
+    if log_t > math.log(1e7):  # a nearly flat fit: past any useful time
+        return None, "fit: > 100 days"
+    return math.exp(log_t), "fit"
 
 
 def fmt_time(t):
@@ -154,15 +157,17 @@ def mitsuba_available(variant):
 
 
 def mitsuba_render(scene, spp, seed):
-    """An image of `spp` samples as the mean of passes of at most MITSUBA_PASS_SPP; seconds."""
+    """An image of at least `spp` samples as the mean of passes of at most MITSUBA_PASS_SPP, each
+    weighted by the samples it really traced (`orthogonal` rounds a count up to a prime square);
+    (image, seconds)."""
     done, total, secs = 0, None, 0.0
     k = 0
     while done < spp:
-        n = min(MITSUBA_PASS_SPP, spp - done)
-        img, t = mx.render(scene, n, (seed * 4099 + k) % 2 ** 32)
+        img, t = mx.render(scene, min(MITSUBA_PASS_SPP, spp - done), (seed * 4099 + k) % 2 ** 32)
+        n = mx.samples_per_pixel(scene)
         total = img * n if total is None else total + img * n
         done, secs, k = done + n, secs + t, k + 1
-    return total / spp, secs
+    return total / done, secs
 
 
 def mitsuba_race(mi, name, project, width, height, sampler, ref_seconds, target, work, ref=None):
@@ -262,7 +267,7 @@ def main():
     ap.add_argument("--ref-seconds", type=float, default=30, help="length of each converged image")
     ap.add_argument("--target", type=float, default=1e-3)
     ap.add_argument("--variant", default="cuda_ad_rgb", help="Mitsuba variant (default cuda_ad_rgb)")
-    ap.add_argument("--mitsuba-samplers", default="independent,multijitter",
+    ap.add_argument("--mitsuba-samplers", default="independent,orthogonal",
                     help="comma-separated (bench/RESULTS.md says which low-discrepancy one wins)")
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--dry", action="store_true",
