@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Checks that the exporter's environment-map and camera conventions match Glint's.
 
-Renders a tiny environment-only project (max_bounces 0, an HDR from ../shared/assets rotated by
-40 degrees) from three views with Glint (two seeds: the noise floor) and with Mitsuba under the
+Renders a tiny environment-only project (max_bounces 0, an HDR map rotated by 40 degrees:
+the generated sky, or a real map with run.py --assets) from three views with Glint (two seeds: the noise floor) and with Mitsuba under the
 exporter's convention and under deliberately wrong ones; returns the relMSE of each against
 Glint. The right convention must sit at the noise floor and every wrong one far above it.
 """

@@ -2,9 +2,13 @@
 """Writes the bench scenes, bench/scenes/*.glint (Glint project format version 1).
 
 Run by bench/run.py before every benchmark (the files are committed too, so they can be opened
-in the editor). Only the standard library is used. The HDR environment comes from the shared
-sample assets beside the repository (../shared/assets, see /work/shared/assets/README.md); it is
-referenced by a path relative to the project file and never copied into the repository.
+in the editor). Only the standard library is used.
+
+Environments: by default the two scenes lit by an HDR map use the sky that the project generates
+(projects/assets/sky.hdr, written by `glint-make-assets` from renderer/procedural_assets.cpp and
+checked by the assets.regenerate_identically test), so the bench runs on a bare clone. With
+`--assets DIR` (run.py passes it through) they use real HDR maps from DIR instead, by name
+(HDR_MAPS below), written to another folder so that the committed scenes stay as they are.
 """
 import json
 import os
@@ -14,8 +18,9 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SCENES = os.path.join(HERE, "scenes")
-# From bench/scenes/ up to the folder that holds the repository, then shared/assets.
-SHARED_ASSETS_REL = "../../../shared/assets"
+GENERATED_SKY = os.path.join(ROOT, "projects", "assets", "sky.hdr")
+# Scene -> the real HDR map it uses with --assets DIR.
+HDR_MAPS = {"roughness_ladder": "poly_haven_studio_1k.hdr", "env_dof": "hangar_interior_1k.hdr"}
 
 
 def project(camera, film, materials, spheres=(), quads=(), environment=None, max_bounces=8,
@@ -67,7 +72,23 @@ def const_env(color, intensity=1.0):
     return {"color": color, "texture": None, "intensity": intensity, "rotation_deg": 0}
 
 
-def scenes():
+def hdr_env(scene, assets, out_dir, rotation_deg):
+    """The environment of a scene lit by an HDR map: DIR's map with --assets (an absolute path),
+    else the generated sky, relative to the folder the project is written to (the committed
+    scenes work from any clone)."""
+    path = os.path.abspath(os.path.join(assets, HDR_MAPS[scene])) if assets else \
+        os.path.relpath(GENERATED_SKY, out_dir)
+    return {"color": [1, 1, 1], "texture": path.replace(os.sep, "/"), "intensity": 1,
+            "rotation_deg": rotation_deg}
+
+
+def missing_assets(assets):
+    """The HDR maps that --assets DIR lacks (as messages naming the file)."""
+    return [f"{os.path.join(assets, f)}: file not found (--assets needs it for {s})"
+            for s, f in HDR_MAPS.items() if not os.path.isfile(os.path.join(assets, f))]
+
+
+def scenes(assets=None, out_dir=SCENES):
     out = {}
 
     # 1. Cornell box: matte walls, an area light one unit below the ceiling (its back side
@@ -93,7 +114,7 @@ def scenes():
         ])
 
     # 2. Roughness ladder: metal (back row) and glossy (front row) spheres, roughness 0 to 0.6,
-    # on a matte floor under the studio HDR.
+    # on a matte floor under an HDR environment (the generated sky, or a studio map).
     rough = [0.0, 0.05, 0.1, 0.2, 0.35, 0.6]
     mats = [mat("floor", "matte", [0.5, 0.5, 0.5])]
     sph = []
@@ -106,8 +127,7 @@ def scenes():
     out["roughness_ladder"] = project(
         cam([0, 2.4, 5.2], [0, 0.3, 0], 40), (320, 180), mats, spheres=sph,
         quads=[floor_quad("floor", "floor", 8)],
-        environment={"color": [1, 1, 1], "texture": f"{SHARED_ASSETS_REL}/poly_haven_studio_1k.hdr",
-                     "intensity": 1, "rotation_deg": 0})
+        environment=hdr_env("roughness_ladder", assets, out_dir, 0))
 
     # 3. Thin glass: smooth and rough thin-glass spheres and panes in front of coloured stripes,
     # lit by an emissive panel and a dim sky.
@@ -148,7 +168,7 @@ def scenes():
                quad("wall", "grey", [[-4, 0, -1.2], [-4, 4, -1.2], [4, 0, -1.2], [4, 4, -1.2]])])
 
     # 5. HDR environment with depth of field: matte and white-mirror spheres receding in depth,
-    # thin lens focused on the middle one.
+    # thin lens focused on the middle one (the generated sky, or an interior map).
     out["env_dof"] = project(
         cam([0, 0.9, 4.5], [0, 0.5, 0], 35, aperture=0.08, focus=4.5), (320, 180),
         [mat("floor", "matte", [0.45, 0.45, 0.45]), mat("red", "matte", [0.75, 0.15, 0.1]),
@@ -159,8 +179,7 @@ def scenes():
                  sphere("far", [1.2, 0.5, -2.5], 0.5, "teal"),
                  sphere("farther", [-1.6, 0.5, -5.0], 0.5, "white")],
         quads=[floor_quad("floor", "floor", 10)],
-        environment={"color": [1, 1, 1], "texture": f"{SHARED_ASSETS_REL}/hangar_interior_1k.hdr",
-                     "intensity": 1, "rotation_deg": 40})
+        environment=hdr_env("env_dof", assets, out_dir, 40))
 
     # 6. A sphere of radius 1e5 used as a floor (precision of intersection and ray offsets).
     out["huge_sphere_floor"] = project(
@@ -190,7 +209,7 @@ def scenes():
     with open(os.path.join(ROOT, "projects", "default.glint")) as f:
         show = json.load(f)
     rebase = lambda p: p if (p is None or os.path.isabs(p)) else os.path.relpath(
-        os.path.join(ROOT, "projects", p), SCENES)
+        os.path.join(ROOT, "projects", p), out_dir)
     show["environment"]["texture"] = rebase(show["environment"].get("texture"))
     for t in show.get("textures", []):
         t["path"] = rebase(t["path"])
@@ -209,10 +228,15 @@ def dumps(doc):
     return text + "\n"
 
 
-def main():
-    os.makedirs(SCENES, exist_ok=True)
-    for name, doc in scenes().items():
-        path = os.path.join(SCENES, name + ".glint")
+def main(out_dir=SCENES, assets=None):
+    """Writes the scenes into out_dir (bench/scenes by default); returns 0."""
+    if assets:
+        missing = missing_assets(assets)
+        if missing:
+            raise SystemExit("bench: " + "; ".join(missing))
+    os.makedirs(out_dir, exist_ok=True)
+    for name, doc in scenes(assets, out_dir).items():
+        path = os.path.join(out_dir, name + ".glint")
         text = dumps(doc)
         old = open(path).read() if os.path.exists(path) else None
         if old != text:
@@ -223,4 +247,9 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    import argparse
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--assets", help="folder with the real HDR maps (" + ", ".join(HDR_MAPS.values()) + ")")
+    ap.add_argument("--out", default=SCENES, help="folder to write the scenes to (default bench/scenes)")
+    a = ap.parse_args()
+    sys.exit(main(a.out, a.assets))

@@ -211,10 +211,20 @@ def scene_size(doc):
     return float(np.max(pts.max(0) - pts.min(0))) or 1.0
 
 
+# Mitsuba's samplers that the bench races: `independent` (uniform random numbers) and its
+# low-discrepancy ones (https://mitsuba.readthedocs.io/en/stable/src/generated/plugins_samplers.html).
+# `ldsampler` rounds the sample count up to a power of two and `orthogonal` to the square of a
+# prime; `samples_per_pixel` says what a scene really traced.
+SAMPLERS = ("independent", "ldsampler", "multijitter", "orthogonal")
+
+
 def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation_offset_deg=-90.0,
-           resample_env_rows=True):
-    """Returns (scene dict, notes). Raises Unsupported. `rotation_offset_deg` and
-    `resample_env_rows` exist for the convention test only (to show that the wrong ones fail)."""
+           resample_env_rows=True, sampler="independent"):
+    """Returns (scene dict, notes). Raises Unsupported. `sampler` is one of SAMPLERS.
+    `rotation_offset_deg` and `resample_env_rows` exist for the convention test only (to show
+    that the wrong ones fail)."""
+    if sampler not in SAMPLERS:
+        raise ValueError(f"unknown Mitsuba sampler {sampler!r} (one of {', '.join(SAMPLERS)})")
     reasons = unsupported_reasons(doc)
     if reasons:
         raise Unsupported("; ".join(reasons))
@@ -242,7 +252,7 @@ def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation
                                 up=[float(c) for c in cam["up"]]),
         "film": {"type": "hdrfilm", "width": width, "height": height, "pixel_format": "rgb",
                  "component_format": "float32", "rfilter": {"type": "box"}},
-        "sampler": {"type": "independent", "sample_count": int(spp), "seed": int(seed)},
+        "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
     }
     if sensor["type"] == "thinlens":
         sensor["aperture_radius"] = float(cam["aperture_radius"])
@@ -329,6 +339,11 @@ def render(scene_dict, spp, seed):
     img = mi.render(scene, spp=int(spp), seed=int(seed))
     out = np.array(img, dtype=np.float32)  # forces evaluation
     return out, time.perf_counter() - t0
+
+
+def samples_per_pixel(scene):
+    """The sample count the scene's sampler last used (after its own rounding)."""
+    return int(scene.sensors()[0].sampler().sample_count())
 
 
 def write_exr(path, img):

@@ -38,10 +38,13 @@ sys.path.insert(0, HERE)
 import numpy as np  # noqa: E402
 
 import ablation  # noqa: E402
+import backends  # noqa: E402
 import horizon_check  # noqa: E402
 import make_scenes  # noqa: E402
 import metrics  # noqa: E402
 import mitsuba_export as mx  # noqa: E402
+import mitsuba_samplers  # noqa: E402
+import race  # noqa: E402
 
 SCENES = ["cornell", "roughness_ladder", "thin_glass", "small_emitter", "env_dof",
           "huge_sphere_floor", "white_furnace", "showcase"]
@@ -49,10 +52,16 @@ TARGETS = [1e-1, 1e-2, 1e-3]
 REF_SEED = 1000001
 MITSUBA_REF_SEED = 2000001
 
-FULL = dict(width=128, max_spp=256, ref_spp=4096, seeds=3, mitsuba_ref_spp=1024,
-            mitsuba_max_spp=128, ablation_spp=64, ablation_seeds=2)
-QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=64, mitsuba_max_spp=8,
-             ablation_spp=4, ablation_seeds=1)
+FULL = dict(width=128, max_spp=256, ref_spp=4096, seeds=3, mitsuba_ref_spp=4096,
+            mitsuba_max_spp=256, ablation_spp=64, ablation_seeds=2, backend_spp=64, backend_repeats=3)
+QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=256, mitsuba_max_spp=16,
+             ablation_spp=4, ablation_seeds=1, backend_spp=4, backend_repeats=1)
+# The per-sample gain of Glint's Sobol sampler over PCG on the direct-light Cornell box
+# (bench/qmc_gain.py; Burley 2020, JCGT 9(4), Fig. 1 reports about 12x in RMSE at 16 spp).
+QMC_ARGS = {"full": ["--ref-spp", "4096", "--seeds", "12", "--spp", "4", "16", "64"],
+            "quick": ["--ref-spp", "256", "--seeds", "3", "--spp", "4", "16", "--size", "32"]}
+# Sample counts of the equal-spp trial of Mitsuba's samplers (bench/mitsuba_samplers.py).
+TRIAL_SPP = {"full": (16, 64), "quick": (4, 8)}
 
 
 def log(msg):
@@ -199,7 +208,19 @@ def summarize(rows, key="relmse"):
                         if len([r for r in rows if r["spp"] == s]) > 1 else float("nan") for s in spps]}
 
 
-def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary):
+def mitsuba_scene(project, work, w, h, sampler="independent"):
+    """The exported project loaded with `sampler`, its kernels compiled (a 1-spp warm-up, not
+    counted in any time below)."""
+    d, notes = mx.export(mx.load_project(project), w, h, 1, 0, mesh_dir=work, sampler=sampler)
+    scene = mx._mitsuba().load_dict(d)
+    mx.render(scene, 1, 0)
+    return scene, notes
+
+
+def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary, sampler="independent",
+                  ref_m=None):
+    """Mitsuba's converged image (unless `ref_m` is given: then only the ladder) and its 1, 2,
+    4, ... ladder with `sampler`, against that converged image; the comparison with Glint."""
     doc = mx.load_project(project)
     reasons = mx.unsupported_reasons(doc)
     if reasons:
@@ -207,18 +228,19 @@ def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary):
     os.makedirs(work, exist_ok=True)
     ref_g = glint_result["ref"]
     h, w = ref_g.shape[:2]
-    d, notes = mx.export(doc, w, h, 1, 0, mesh_dir=work)
-    mi = mx._mitsuba()
-    scene = mi.load_dict(d)
-    mx.render(scene, 1, 0)  # JIT warm-up (kernel compilation is not counted below)
-    ref_m, t_ref = mx.render(scene, cfg["mitsuba_ref_spp"], MITSUBA_REF_SEED)
-    mx.write_exr(os.path.join(work, "mitsuba_reference.exr"), ref_m)
-    log(f"  mitsuba reference: {cfg['mitsuba_ref_spp']} spp in {fmt_s(t_ref)}")
+    t_ref = None
+    if ref_m is None:
+        scene, notes = mitsuba_scene(project, work, w, h)
+        ref_m, t_ref = mx.render(scene, cfg["mitsuba_ref_spp"], MITSUBA_REF_SEED)
+        mx.write_exr(os.path.join(work, "mitsuba_reference.exr"), ref_m)
+        log(f"  mitsuba reference: {cfg['mitsuba_ref_spp']} spp in {fmt_s(t_ref)}")
+    scene, notes = mitsuba_scene(project, work, w, h, sampler)
     rows = []
     for seed in range(1, cfg["seeds"] + 1):
         for spp in ladder(cfg["mitsuba_max_spp"]):
             img, secs = mx.render(scene, spp, seed)
-            rows.append({"seed": seed, "spp": spp, "seconds": secs,
+            # Samplers that round the count (orthogonal: prime squares) are logged at what they traced.
+            rows.append({"seed": seed, "spp": mx.samples_per_pixel(scene), "seconds": secs,
                          "relmse": metrics.relmse(img, ref_m), "mean_lum": metrics.mean_lum(img),
                          "relmse_vs_glint_ref": metrics.relmse(img, ref_g)})
     ms = summarize(rows)
@@ -240,13 +262,13 @@ def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary):
     sg = glint_summary["lum_std"][-1] * math.sqrt(glint_summary["spp"][-1] / cfg["ref_spp"])
     sm = ms["lum_std"][-1] * math.sqrt(ms["spp"][-1] / cfg["mitsuba_ref_spp"])
     sigma = math.sqrt(sg ** 2 + sm ** 2) / m_lum if m_lum > 0 else float("nan")
-    log(f"  mitsuba: bias {bias:+.3%} (sigma {sigma:.2%}), relMSE(glint ref, mitsuba ref) "
+    log(f"  mitsuba ({sampler}): bias {bias:+.3%} (sigma {sigma:.2%}), relMSE(glint ref, mitsuba ref) "
         f"{rel_conv:.3g} (noise alone ~{noise:.3g}), equal-time ratio {ratio:.3g} at {fmt_s(t_star)}")
     return {"exported": True, "notes": notes, "rows": rows, "summary": ms, "t_ref": t_ref,
             "bias": bias, "sigma": sigma, "relmse_conv": rel_conv, "noise": noise,
             "ratio": ratio, "t_star": t_star, "fit_time": fit_mt, "fit_spp": fit_ms,
             "pixels": w * h, "mean_lum_mitsuba": m_lum, "mean_lum_glint": metrics.mean_lum(ref_g),
-            "ref": ref_m}
+            "ref": ref_m, "sampler": sampler}
 
 
 # --------------------------------------------------------------------------------------------
@@ -304,6 +326,8 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
     L.append(f"- machine: {env['cpu']}, {os.cpu_count()} logical CPUs; Glint on OpenGL {env['gl']}")
     L.append(f"- Mitsuba {env['mitsuba']} variant `{env['variant']}`" +
              (f" (libLLVM: `{env['llvm']}`)" if env["llvm"] else " (no working libLLVM found)"))
+    L.append(f"- environments: {env['environments']}")
+    L.append(f"- wall time of the run (scenes written to RESULTS.md, plots included): {env['wall']}")
     L.append(f"- width {cfg['width']} px (each scene keeps its film's aspect), {cfg['seeds']} seeds, "
              f"1 to {cfg['max_spp']} spp doubling; reference: Glint itself at {cfg['ref_spp']} spp "
              f"(seed {REF_SEED}, used by no test render); Mitsuba: converged image at "
@@ -316,6 +340,26 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
              f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point")
     L.append("- Glint renders with its default sampler (Owen-scrambled Sobol); the error per sample "
              "of Sobol against PCG at equal spp is measured by bench/qmc_gain.py (bench/SAMPLER.md)\n")
+    if results_extra.get("race") is not None:
+        L.append(race.markdown(results_extra["race"], results_extra["trial"]["winner"], fmt_s))
+        L.append(mitsuba_samplers.markdown(results_extra["trial"]))
+    if results_extra.get("qmc"):
+        q = results_extra["qmc"]
+        L.append("## Glint's sampler at equal spp: Sobol (the default) against PCG\n")
+        L.append(f"`{q['command']}` (details, layout trials and tests in bench/SAMPLER.md): the "
+                 "Cornell box of projects/ with every material matte and max_bounces 1 (direct "
+                 "light, the case of Burley 2020, \"Practical Hash-based Owen Scrambling\", JCGT "
+                 "9(4), Fig. 1, which reports about 12x lower RMSE at 16 spp), RMSE against a "
+                 "high-spp Sobol reference, over seeds. Its output:\n")
+        L.append("```\n" + q["output"].strip() + "\n```\n")
+    L.append("## Back ends: fragment against compute on this machine\n")
+    if results_extra.get("backends"):
+        L.append(f"`glint render --backend fragment` and `--backend compute`, each scene at the "
+                 f"bench's width, {cfg['backend_spp']} spp, {cfg['backend_repeats']} renders per back "
+                 "end interleaved, median samples per second (trace time as the CLI reports it). "
+                 "The last column is the relMSE between the two back ends' images of the same "
+                 "seed.\n")
+    L += backends.table(results_extra.get("backends") or [], bool(results_extra.get("backends")))
     L.append("## Convergence and time to error\n")
     L.append("| scene | size | Msamples/s | spp/s | slope vs spp | slope vs time | relMSE @ max spp | "
              "trimmed | FLIP @ max spp | t(relMSE 1e-1) | t(1e-2) | t(1e-3) |")
@@ -425,11 +469,14 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
         L.append("")
     if conv:
         L.append("### Convention check: environment map and camera\n")
-        L.append("An environment-only project (max_bounces 0, `hangar_interior_1k.hdr` rotated by "
+        L.append(f"An environment-only project (max_bounces 0, `{env['convention_hdr']}` rotated by "
                  "40 degrees, intensity 1.5, 64x48 px, 64 spp) seen from three directions, "
                  "rendered by Glint (two seeds) and by Mitsuba with the exporter's convention and "
                  "with wrong ones. relMSE against Glint's seed-1 image; the right convention must "
-                 "sit at the noise floor (Glint against Glint).\n")
+                 "sit near the noise floor (Glint against Glint) and every wrong one far above "
+                 "it. On a smooth map (the generated sky: a sharp sun disc and horizon, smooth "
+                 "elsewhere) the noise floor is tiny and the exporter's residual can sit well "
+                 "above it; what tells the conventions apart is then the gap to the wrong ones.\n")
         keys = [k for k in conv[0] if k != "view" and not k.endswith(" bias")]
         L.append("| view | " + " | ".join(keys) + " |")
         L.append("|---|" + "---|" * len(keys))
@@ -554,10 +601,14 @@ def main():
     ap.add_argument("--out", help="folder for RESULTS.md and plots (default: bench/, or build-bench/quick/ with --quick)")
     ap.add_argument("--work", help="scratch folder for renders (default: build-bench/work or build-bench/quick/work)")
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "glint"))
+    ap.add_argument("--assets", metavar="DIR",
+                    help="real HDR maps for the scenes lit by one (" + ", ".join(make_scenes.HDR_MAPS.values()) +
+                    ", by name); default: the sky the project generates (projects/assets/sky.hdr)")
     for k, v in FULL.items():
         ap.add_argument("--" + k.replace("_", "-"), type=int, help=f"(full {v}, quick {QUICK[k]})")
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--no-ablation", action="store_true", help="skip the per-technique renders")
+    ap.add_argument("--no-qmc", action="store_true", help="skip the Sobol-against-PCG table (bench/qmc_gain.py)")
     ap.add_argument("--no-llvm-download", action="store_true",
                     help="do not fetch libllvm19 when no system libLLVM works (use scalar_rgb)")
     a = ap.parse_args()
@@ -573,7 +624,13 @@ def main():
     glint = os.path.abspath(a.glint)
     if not os.path.exists(glint):
         sys.exit(f"bench: {glint} not found (bash scripts/build.sh)")
+    # The committed scenes use the generated sky; with --assets the scenes are written beside the
+    # renders (their environments point into DIR) and bench/scenes is left as committed.
+    scenes_dir = os.path.join(HERE, "scenes")
     make_scenes.main()
+    if a.assets:
+        scenes_dir = os.path.join(work, "scenes-assets")
+        make_scenes.main(scenes_dir, os.path.abspath(a.assets))
     t_start = time.time()
     env = {"date": datetime.datetime.now().strftime("%Y-%m-%d %H:%M"), "variant": "-", "llvm": None,
            "mitsuba": "-"}
@@ -581,17 +638,19 @@ def main():
     if not a.no_mitsuba:
         env["variant"], env["llvm"] = ensure_llvm(not a.no_llvm_download)
         mi = mx._mitsuba()
+        mi.set_log_level(mi.LogLevel.Error)  # `orthogonal` warns at every count it rounds
         env["mitsuba"] = mi.__version__
         log(f"mitsuba {mi.__version__}, variant {env['variant']}")
-        hdr = os.path.join(ROOT, "..", "shared", "assets", "hangar_interior_1k.hdr")
-        if os.path.exists(hdr):
-            log("convention check")
-            conv = __import__("convention_check").run(glint, os.path.join(work, "convention"), hdr)
+        hdr = (os.path.join(os.path.abspath(a.assets), make_scenes.HDR_MAPS["env_dof"]) if a.assets
+               else make_scenes.GENERATED_SKY)
+        env["convention_hdr"] = os.path.basename(hdr) if a.assets else "projects/assets/sky.hdr"
+        log(f"convention check ({env['convention_hdr']})")
+        conv = __import__("convention_check").run(glint, os.path.join(work, "convention"), hdr)
     has_log = cli_has_log(glint)
     log(f"glint render --log: {'available' if has_log else 'not available (metrics computed here only)'}")
     results = {}
     for name in a.scenes:
-        project = os.path.join(HERE, "scenes", name + ".glint")
+        project = os.path.join(scenes_dir, name + ".glint")
         log(f"{name}")
         g = bench_glint(name, project, glint, os.path.join(work, name), cfg, has_log)
         s = summarize(g["rows"])
@@ -612,23 +671,64 @@ def main():
     env["cpu"] = machine_info(env.get("gl"))
     prefix = ""
     plot_files = plots(results, out_dir, prefix)
-    cmd = "bash bench/run.sh" + (" --quick" if a.quick else "")
+    cmd = "bash bench/run.sh" + (" --quick" if a.quick else "") + (" --assets DIR" if a.assets else "")
+    env["environments"] = (", ".join(f"{s} `{f}`" for s, f in make_scenes.HDR_MAPS.items()) + " from --assets"
+                           if a.assets else "roughness_ladder and env_dof under the generated sky "
+                           "(projects/assets/sky.hdr, `glint-make-assets`)")
     extra = {}
     if not a.no_ablation:
         log("ablation (techniques one after another)")
         extra["ablation"] = ablation.run(glint_render, glint,
-                                         [(n, os.path.join(HERE, "scenes", n + ".glint")) for n in a.scenes],
+                                         [(n, os.path.join(scenes_dir, n + ".glint")) for n in a.scenes],
                                          work, cfg, {n: r["glint"]["ref"] for n, r in results.items()}, log)
+    if not a.no_mitsuba:
+        exported = [(n, r["mitsuba"]["ref"]) for n, r in results.items() if r["mitsuba"]["exported"]]
+        if exported:
+            log("mitsuba: samplers at equal spp")
+            load = lambda n, smp: mitsuba_scene(os.path.join(scenes_dir, n + ".glint"),
+                                                os.path.join(work, n, "mitsuba"),
+                                                *results[n]["size"], smp)[0]
+            extra["trial"] = mitsuba_samplers.trial(exported, TRIAL_SPP["quick" if a.quick else "full"],
+                                                    cfg["seeds"], load, log)
+            ld = extra["trial"]["winner"]
+            for n, ref_m in exported:
+                log(f"{n}: mitsuba {ld} ladder")
+                results[n]["mitsuba_ld"] = {ld: bench_mitsuba(
+                    n, os.path.join(scenes_dir, n + ".glint"), os.path.join(work, n, "mitsuba"), cfg,
+                    results[n]["glint"], results[n]["summary"], sampler=ld, ref_m=ref_m)}
+            extra["race"] = race.rows(results, ld)
+    if not a.no_qmc:
+        log("sampler gain: bench/qmc_gain.py (Sobol against PCG, direct-light Cornell box)")
+        qargs = QMC_ARGS["quick" if a.quick else "full"] + ["--glint", glint, "--out", os.path.join(work, "qmc")]
+        r = subprocess.run([sys.executable, os.path.join(HERE, "qmc_gain.py")] + qargs,
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"bench/qmc_gain.py failed ({r.returncode}):\n{r.stderr}{r.stdout}")
+        extra["qmc"] = {"command": "python3 bench/qmc_gain.py " + " ".join(QMC_ARGS["quick" if a.quick else "full"]),
+                        "output": r.stdout}
+        log("  " + r.stdout.strip().splitlines()[-1])
+    if backends.available(glint):
+        log("back ends: fragment against compute")
+        extra["backends"] = backends.measure(
+            glint_render, glint, [(n, os.path.join(scenes_dir, n + ".glint")) for n in a.scenes],
+            os.path.join(work, "backends"), cfg["width"], cfg["backend_spp"], cfg["backend_repeats"],
+            log, lambda p, q: metrics.relmse(metrics.read_exr(p), metrics.read_exr(q)))
+    else:
+        log("back ends: `glint render --help` has no --backend (fragment only; no table)")
     if not a.quick:
         extra["before_after"] = ablation.before_after(os.path.join(HERE, "results_before.json"), results)
+    env["wall"] = fmt_s(time.time() - t_start)
     write_results(results, conv, cfg, env, out_dir, prefix, plot_files, cmd, extra)
     # Raw numbers beside the report, for re-plotting without re-rendering.
     raw = {n: {"glint": r["glint"]["rows"],
-               "mitsuba": r.get("mitsuba", {}).get("rows") if r.get("mitsuba", {}).get("exported") else None}
+               "mitsuba": r.get("mitsuba", {}).get("rows") if r.get("mitsuba", {}).get("exported") else None,
+               "mitsuba_ld": {k: v["rows"] for k, v in r.get("mitsuba_ld", {}).items()}}
            for n, r in results.items()}
     with open(os.path.join(out_dir, f"{prefix}results.json"), "w") as f:
         json.dump({"config": cfg, "env": env, "scenes": raw, "ablation": extra.get("ablation"),
-                   "before_after": extra.get("before_after")}, f, indent=1)
+                   "before_after": extra.get("before_after"), "mitsuba_samplers": extra.get("trial"),
+                   "race": extra.get("race"), "backends": extra.get("backends"),
+                   "qmc": extra.get("qmc")}, f, indent=1)
     log(f"wrote {os.path.join(out_dir, prefix + 'RESULTS.md')} in {fmt_s(time.time() - t_start)}")
 
 

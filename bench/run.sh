@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The benchmark: speed against error for the bench scenes, and Mitsuba 3 as an independent
 # reference. Makes its own Python environment (bench/.venv, pinned by bench/requirements.txt),
-# builds Glint when build/glint is missing, then runs bench/run.py, which writes
+# builds Glint when build/glint is missing (and no --glint is given), then runs bench/run.py, which writes
 # bench/RESULTS.md and its plots. Arguments go to run.py (--quick: tiny validation run written
 # to build-bench/quick/; --help lists the rest).
 set -euo pipefail
@@ -16,8 +16,10 @@ if ! cmp -s bench/requirements.txt "$VENV/.requirements-installed"; then
   "$VENV/bin/python" -m pip install --quiet --disable-pip-version-check -r bench/requirements.txt
   cp bench/requirements.txt "$VENV/.requirements-installed"
 fi
-if [ ! -x build/glint ]; then
-  bash scripts/build.sh
-fi
+# Build only when the default binary is used and missing (`--glint PATH` names another).
+case " $* " in
+  *" --glint "*|*" --glint="*) ;;
+  *) [ -x build/glint ] || bash scripts/build.sh ;;
+esac
 export PYTHONDONTWRITEBYTECODE=1
 exec "$VENV/bin/python" bench/run.py "$@"
