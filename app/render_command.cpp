@@ -1,4 +1,4 @@
-#include "editor/render_command.h"
+#include "app/render_command.h"
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "editor/progress_bar.h"
+#include "app/progress_bar.h"
 #include "renderer/atomic_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
