@@ -1,7 +1,5 @@
 #include "editor/export_job.h"
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <epoxy/gl.h>
@@ -9,16 +7,10 @@
 #include "renderer/atomic_file.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
+#include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
 namespace glint {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 std::string validate_export_settings(const ExportSettings& s) {
   // The loader's film limits and message (scene_validation.h): an export renders with a second
@@ -53,6 +45,9 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
   renderer_ = std::make_unique<GpuRenderer>(options);
   renderer_->set_options(settings_.estimator);
   renderer_->sync(scene_, settings_.width, settings_.height);
+  RenderSessionOptions session;
+  session.target = settings_.use_time ? RenderTarget{0, settings_.seconds} : RenderTarget{settings_.samples, 0};
+  session_ = std::make_unique<RenderSession>(*renderer_, session);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -62,39 +57,26 @@ int64_t ExportJob::samples() const { return renderer_ ? renderer_->sample_count(
 
 float ExportJob::progress() const {
   if (state_ == State::done) return 1;
-  double p = settings_.use_time ? traced_seconds_ / settings_.seconds
-                                : double(samples()) / double(settings_.samples);
-  return static_cast<float>(std::clamp(p, 0.0, 1.0));
+  return session_ ? session_->progress() : 0.0f;
 }
 
 void ExportJob::cancel() {
   if (state_ == State::running) state_ = State::cancelled;
+  session_.reset();
   renderer_.reset();  // frees the export-sized buffers now
 }
 
 bool ExportJob::step(double slice_seconds) {
   if (state_ != State::running) return false;
   try {
-    auto start = std::chrono::steady_clock::now();
-    do {
-      bool target_reached = settings_.use_time
-                                ? traced_seconds_ >= settings_.seconds && samples() > 0
-                                : samples() >= settings_.samples;
-      if (target_reached) {
-        finish();
-        break;
-      }
-      int k = batch_;
-      if (!settings_.use_time) k = static_cast<int>(std::min<int64_t>(k, settings_.samples - samples()));
-      auto pass = std::chrono::steady_clock::now();
-      renderer_->trace(k);
-      glFinish();  // measure the real pass time (and keep passes from queueing up)
-      double t = seconds_since(pass);
-      traced_seconds_ += t;
-      // Passes about a quarter of the slice: fewer passes, yet the UI gets its frames.
-      if (t < slice_seconds * 0.25 && batch_ < 1024) batch_ *= 2;
-      else if (t > slice_seconds && batch_ > 1) batch_ /= 2;
-    } while (seconds_since(start) < slice_seconds);
+    // Passes about a quarter of the slice: fewer passes, yet the UI gets its frames.
+    BatchPolicy batch;
+    batch.grow_below = slice_seconds * 0.25;
+    batch.shrink_above = slice_seconds;
+    session_->set_batch_policy(batch);
+    session_->step(slice_seconds);
+    traced_seconds_ = session_->seconds();
+    if (session_->done()) finish();
   } catch (const std::exception& e) {
     state_ = State::failed;
     error_ = e.what();

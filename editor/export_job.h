@@ -1,5 +1,6 @@
 // Export of a final render from the editor, without blocking it: a second GpuRenderer at the
-// export size traces a few samples per call of step(), so the UI keeps running between slices.
+// export size and a RenderSession that traces one slice per call of step(), so the UI keeps
+// running between slices.
 // No ImGui here (ui_export.cpp is its dialog); needs a current OpenGL 4.5 context.
 #pragma once
 
@@ -15,6 +16,7 @@ namespace glint {
 
 class GpuRenderer;
 class ProgramWorker;
+class RenderSession;
 
 struct ExportSettings {
   int width = 960;
@@ -60,9 +62,9 @@ class ExportJob {
   Scene scene_;
   ExportSettings settings_;
   std::unique_ptr<GpuRenderer> renderer_;
+  std::unique_ptr<RenderSession> session_;  // traces into renderer_
   State state_ = State::running;
   std::string error_;
-  int batch_ = 1;
   double traced_seconds_ = 0;
 };
 

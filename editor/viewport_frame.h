@@ -17,6 +17,7 @@ struct ViewportRequest {
   ViewportResolution resolution = ViewportResolution::automatic;  // automatic: the frame budget
   RenderOptions estimator;  // how the viewport samples (not saved in the project)
   bool trace = true;        // false while an export has the device: sync and tonemap only
+  int samples_per_frame = 0;  // > 0: trace exactly this many, not the frame budget's (repeatable runs)
 };
 
 struct FrameStats {
@@ -24,6 +25,7 @@ struct FrameStats {
   double spp_per_second = 0;
   double ms_per_frame = 0;
   int trace_width = 0, trace_height = 0;
+  bool restarted = false;  // this frame's sync reset the accumulation
   std::string gl_renderer;
   std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
 };

@@ -14,9 +14,6 @@ double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The viewport stops tracing here (about a million samples per pixel: converged long before).
-constexpr int64_t kMaxSamples = int64_t(1) << 20;
-
 }  // namespace
 
 ViewportRenderer::ViewportRenderer(GpuRendererOptions options) : renderer_(std::move(options)) {}
@@ -54,17 +51,17 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   if (problems.empty()) {
     try {
       renderer_.set_options(request.estimator);
-      renderer_.sync(scene, w, h);
+      stats.restarted = renderer_.sync(scene, w, h).accumulation_reset;
       synced = true;
     } catch (const std::exception& e) {
       stats.scene_problem = e.what();  // an unreadable image: previous state kept
     }
   }
 
-  if (request.trace && synced && renderer_.sample_count() < kMaxSamples) {
+  if (request.trace && synced && renderer_.sample_count() < kViewportMaxSamples) {
     const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
-    int k = budget_.samples(pixels);
-    k = static_cast<int>(std::min<int64_t>(k, kMaxSamples - renderer_.sample_count()));
+    int k = request.samples_per_frame > 0 ? request.samples_per_frame : budget_.samples(pixels);
+    k = static_cast<int>(std::min<int64_t>(k, kViewportMaxSamples - renderer_.sample_count()));
     auto t0 = std::chrono::steady_clock::now();
     renderer_.trace(k);
     glFinish();  // the budget needs the pass's real time

@@ -12,6 +12,9 @@
 
 namespace glint {
 
+// The viewport stops tracing here (about a million samples per pixel: converged long before).
+constexpr int64_t kViewportMaxSamples = int64_t(1) << 20;
+
 class ViewportRenderer {
  public:
   // Needs a current OpenGL 4.5 context.

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "editor_test_util.h"
-#include "editor/render_command.h"
+#include "app/render_command.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
 

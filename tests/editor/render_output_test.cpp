@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "editor/export_job.h"
-#include "editor/render_command.h"
+#include "app/render_command.h"
 #include "editor_test_util.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"

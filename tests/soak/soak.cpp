@@ -8,9 +8,11 @@
 
 #include <epoxy/gl.h>
 
+#include "editor/viewport_renderer.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/project_file.h"
+#include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
 
@@ -48,34 +50,6 @@ std::vector<double> region_means(const Image& img) {
   for (int r = 0; r < kRegions; ++r) mean[r] /= std::max(count[r], 1.0);
   return mean;
 }
-
-// What the editor's viewport does in one frame (editor/viewport_renderer.cpp), minus the frame
-// budget (k is fixed here so that runs are repeatable) and ImGui: validate, set the estimator
-// options, sync, trace k samples, wait for the pass, update the display texture and set its
-// filtering when it is a new texture, leave the default framebuffer bound.
-struct ViewportFrame {
-  GpuRenderer& renderer;
-  RenderOptions options;
-  GLuint filtered_texture = 0;
-
-  SyncResult operator()(const Scene& scene, int w, int h, int spp) {
-    SyncResult result;
-    if (!validate_scene(scene, false).empty()) throw std::runtime_error("an edit made the scene invalid");
-    renderer.set_options(options);
-    result = renderer.sync(scene, w, h);
-    renderer.trace(spp);
-    glFinish();
-    renderer.update_display();
-    GLuint tex = renderer.display_texture();
-    if (tex && tex != filtered_texture) {
-      glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-      glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-      filtered_texture = tex;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return result;
-  }
-};
 
 // Edit i of phase 1, as a user drags a slider or a gizmo: each kind in turn, each time to a
 // value it did not have (so that every edit must restart the accumulation).
@@ -184,8 +158,21 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
   base.render.seed = rep.seed;
   rep.gl_renderer = gl_renderer_name();
 
-  GpuRenderer renderer;
-  ViewportFrame frame{renderer};
+  if (n_final > kViewportMaxSamples) throw std::runtime_error("more samples per pixel than the viewport traces");
+  // The editor's viewport at full resolution, with c.spp samples every frame instead of the
+  // frame budget's (so that runs are repeatable).
+  ViewportRenderer viewport;
+  GpuRenderer& renderer = viewport.renderer();
+  ViewportRequest request;
+  request.width = c.width;
+  request.height = c.height;
+  request.resolution = ViewportResolution::full;
+  request.samples_per_frame = c.spp;
+  auto frame = [&](const Scene& scene) {
+    const ViewportFrame out = viewport.render(scene, request);
+    if (!out.stats.scene_problem.empty()) throw std::runtime_error("an edit made the scene invalid: " + out.stats.scene_problem);
+    return out.stats;
+  };
   // A reading is the smallest heap and RSS over kSettleFrames frames of the scene as it is (no
   // edit): a driver frees some objects a frame or two after they were replaced (the 2 MiB sky
   // texture of default.glint after an environment edit), which is not a leak.
@@ -196,7 +183,7 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
     m.rss = resident();
     m.heap_bytes = heap_in_use_bytes();
     for (int i = 0; i < kSettleFrames; ++i) {
-      frame(scene, c.width, c.height, c.spp);
+      frame(scene);
       const Resident now = resident();
       if (now.anon_kib < m.rss.anon_kib) m.rss = now;
       m.heap_bytes = std::min(m.heap_bytes, heap_in_use_bytes());
@@ -242,8 +229,8 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
     }
     const bool exposure_frame = c.exposure_every > 0 && f % c.exposure_every == c.exposure_every - 1;
     if (exposure_frame) s.display.exposure = exposure_value(++exposure_steps);
-    SyncResult r = frame(s, c.width, c.height, c.spp);
-    if (f > 0 && r.accumulation_reset) ++rep.edit_resets;
+    const FrameStats r = frame(s);
+    if (f > 0 && r.restarted) ++rep.edit_resets;
     maybe_read_back(f);
     if (c.after_frame) c.after_frame(f);
     if (f + 1 == c.warmup_frames) reading("after warm-up", f + 1, s);
@@ -263,9 +250,9 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
       s.display.exposure = exposure_value(++exposure_steps);
       ++rep.exposure_changes;
     }
-    SyncResult r = frame(s, c.width, c.height, c.spp);
-    if (f == 0 && !r.accumulation_reset) throw std::runtime_error("the unedited scene did not restart the accumulation");
-    if (f > 0 && r.accumulation_reset) ++rep.exposure_resets;
+    const FrameStats r = frame(s);
+    if (f == 0 && !r.restarted) throw std::runtime_error("the unedited scene did not restart the accumulation");
+    if (f > 0 && r.restarted) ++rep.exposure_resets;
     maybe_read_back(f);
     if (c.after_frame) c.after_frame(f);
     if (std::binary_search(checkpoint_frames.begin(), checkpoint_frames.end(), f + 1)) {
@@ -290,8 +277,10 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
     other.render.seed = base.render.seed + 1;
     renderer.sync(other, c.width, c.height);  // then back: a restart with the soak's seed
     renderer.sync(base, c.width, c.height);
-    while (renderer.sample_count() < n_final)
-      renderer.trace(static_cast<int>(std::min<int64_t>(c.paired_spp, n_final - renderer.sample_count())));
+    RenderSessionOptions paired_passes;
+    paired_passes.target.samples = n_final;
+    paired_passes.batch = {.first_batch = c.paired_spp, .max_batch = c.paired_spp};
+    RenderSession(renderer, paired_passes).run();
     Image paired = renderer.read_accumulation();
     Image soaked = paired;
     std::copy(final_pixels.begin(), final_pixels.end(), soaked.pixels.begin());
@@ -322,7 +311,7 @@ SoakReport run_soak(const SoakConfig& c, std::FILE* log) {
     used_n.push_back(c.reference_spp);
     Scene b = base;
     b.render.seed = seed;
-    renderer.set_options(frame.options);
+    renderer.set_options(request.estimator);
     renderer.sync(b, c.width, c.height);
     renderer.trace(c.reference_spp);
     batches.add(region_means(renderer.read_accumulation()));

@@ -1,9 +1,9 @@
-// A soak test of the renderer: the editor's per-frame calls (sync, trace,
-// update_display, an occasional read-back) for a long run on one headless context, measuring
+// A soak test of the renderer: the editor's ViewportRenderer frame after frame (sync, trace,
+// update_display; an occasional read-back) for a long run on one headless context, measuring
 // what a session of hours could accumulate: resident memory and GL objects (a leak per frame or
 // per edit) and the accumulated mean (float32 drift over 10^5 passes).
 //
-// The run has three phases on one GpuRenderer:
+// The run has three phases on the viewport's GpuRenderer:
 //   1. edits: a drag-like edit every frame (sphere position, material colour, roughness and
 //      type, environment intensity, camera orbit, in turn) and an exposure change every M
 //      frames; memory is read after warm-up and at the end of the phase (each reading the least

@@ -1,29 +1,26 @@
-#include "editor/render_command.h"
+#include "app/render_command.h"
 
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
-#include <epoxy/gl.h>
-
-#include "editor/progress_bar.h"
+#include "app/progress_bar.h"
 #include "renderer/atomic_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
+#include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
 namespace glint {
@@ -163,30 +160,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Render time that can be paused, so that the convergence log's own read-backs and error
-// computations do not count as rendering (and do not eat into --time).
-class RenderClock {
- public:
-  double seconds() const { return banked_ + (running_ ? seconds_since(start_) : 0.0); }
-  void pause() {
-    banked_ = seconds();
-    running_ = false;
-  }
-  void resume() {
-    start_ = std::chrono::steady_clock::now();
-    running_ = true;
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  double banked_ = 0;
-  bool running_ = true;
-};
-
 // The reference of --reference: a linear image of exactly the render's size.
 Image load_reference(const std::string& path, int width, int height) {
   ImageInfo info = probe_image(path);  // throws ImageError naming the file
@@ -198,13 +171,6 @@ Image load_reference(const std::string& path, int width, int height) {
                              std::to_string(info.height) + " but the render is " +
                              std::to_string(width) + "x" + std::to_string(height));
   return load_image(path, ColorEncoding::linear);
-}
-
-// Checkpoints of the log: 1, 2, 4, ... and, with a sample target, the target itself.
-int64_t next_checkpoint(int64_t samples, int64_t target) {
-  int64_t p = 1;
-  while (p <= samples) p *= 2;
-  return target > 0 ? std::min(p, target) : p;
 }
 
 // The film size of the render: the project's, or the command line's (one side given: the other
@@ -376,52 +342,36 @@ int run_render_command(int argc, char** argv) {
                    "--accel loop): parts of this image may be wrong (use a GPU)\n",
                    o.project.c_str());
 
-    const int64_t target = o.seconds ? 0 : (o.spp ? *o.spp : 64);
+    RenderSessionOptions session_options;
+    session_options.target = o.seconds ? RenderTarget{0, *o.seconds} : RenderTarget{o.spp ? *o.spp : 64, 0};
+    session_options.checkpoints = log.has_value();
+    RenderSession session(renderer, session_options);
     const bool interactive = isatty(STDERR_FILENO);
-    RenderClock clock;
-    int64_t checkpoint = next_checkpoint(0, target);
     ImageMetrics last_metrics;
     double last_report = -1e9;
-    int batch = 1;
-    for (;;) {
-      double elapsed = clock.seconds();
-      if (o.seconds ? elapsed >= *o.seconds && renderer.sample_count() > 0
-                    : renderer.sample_count() >= target)
-        break;
-      // Samples this pass: the batch, capped at the target and (when logging) at the next
-      // checkpoint, so that every checkpoint is hit exactly.
-      int64_t limit = o.seconds ? std::numeric_limits<int64_t>::max() : target - renderer.sample_count();
-      if (log) limit = std::min(limit, checkpoint - renderer.sample_count());
-      int k = static_cast<int>(std::min<int64_t>(batch, limit));
-      auto pass_start = std::chrono::steady_clock::now();
-      renderer.trace(k);
-      glFinish();
-      // Grow the batch while a full pass is short: fewer passes, same samples.
-      if (k == batch && seconds_since(pass_start) < 0.25 && batch < 1024) batch *= 2;
-      elapsed = clock.seconds();
-      if (log && renderer.sample_count() == checkpoint) {
-        clock.pause();  // the read-back and the metrics are not rendering
+    // After each pass, outside the session's clock: a checkpoint's read-back and metrics are
+    // not rendering (and do not eat into --time).
+    session.run([&](RenderSession& s) {
+      const double elapsed = s.seconds();
+      if (log && s.at_checkpoint()) {
         double gpu = renderer.trace_gpu_seconds();
         Image accumulation = renderer.read_accumulation();
         last_metrics = compare_images(accumulation, *reference);
         char row[256];
         std::snprintf(row, sizeof row, "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.0f",
-                      static_cast<long long>(checkpoint), elapsed, gpu, last_metrics.relmse,
+                      static_cast<long long>(s.samples()), elapsed, gpu, last_metrics.relmse,
                       last_metrics.relmse_trimmed, last_metrics.mape, last_metrics.mean_bias,
                       nonfinite_count(accumulation));
         log->write_line(row);
-        checkpoint = next_checkpoint(checkpoint, target);
-        clock.resume();
       }
       if (interactive || elapsed - last_report >= 5.0) {
-        std::string line = o.seconds
-                               ? format_time_progress(elapsed, *o.seconds, renderer.sample_count())
-                               : format_progress(renderer.sample_count(), target, elapsed, "spp");
+        std::string line = o.seconds ? format_time_progress(elapsed, *o.seconds, s.samples())
+                                     : format_progress(s.samples(), s.options().target.samples, elapsed, "spp");
         std::fprintf(stderr, interactive ? "\r%s\033[K" : "%s\n", line.c_str());
         last_report = elapsed;
       }
-    }
-    double total = clock.seconds();
+    });
+    double total = session.seconds();
     if (interactive) std::fputc('\n', stderr);
     {
       std::string defines = renderer.last_pass_defines();

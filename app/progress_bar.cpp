@@ -1,4 +1,4 @@
-#include "editor/progress_bar.h"
+#include "app/progress_bar.h"
 
 #include <algorithm>
 #include <cmath>

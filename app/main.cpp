@@ -3,7 +3,7 @@
 #include <string>
 
 #include "editor/editor_app.h"
-#include "editor/render_command.h"
+#include "app/render_command.h"
 
 namespace {
 
@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     std::fputs(kHelp, stdout);
     return 0;
   }
+#ifdef GLINT_WITH_EDITOR
   std::string error;
   auto options = glint::parse_editor_options(argc - 1, argv + 1, error);
   if (!options) {
@@ -38,4 +39,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   return glint::run_editor(*options);
+#else
+  std::fprintf(stderr, "glint: built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render` is available\n");
+  return 2;
+#endif
 }

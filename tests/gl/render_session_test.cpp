@@ -1,0 +1,142 @@
+// RenderSession: a sample target hit exactly, checkpoints hit exactly, a time target, the batch
+// policy and cancellation, on a small scene.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "gl_test_support.h"
+#include "renderer/render_session.h"
+
+namespace glint {
+namespace {
+
+constexpr double kAlways = std::numeric_limits<double>::infinity();
+
+struct SessionTest : ::testing::Test {
+  void SetUp() override {
+    Scene scene = test::empty_scene();
+    scene.environment.color = {0.5f, 0.5f, 0.5f};
+    scene.materials.push_back({.name = "white", .color = {0.8f, 0.8f, 0.8f}});
+    scene.spheres.push_back({.name = "ball", .center = {0, 0, 0}, .radius = 1, .material = "white"});
+    renderer.sync(scene, 8, 8);
+  }
+  // The sample count after every pass of run().
+  std::vector<int64_t> run(RenderSession& session) {
+    std::vector<int64_t> counts;
+    session.run([&](RenderSession& s) { counts.push_back(s.samples()); });
+    return counts;
+  }
+  bool context = (test::ensure_gl_context(), true);  // before the renderer
+  GpuRenderer renderer;
+};
+
+// A batch that doubles after every pass (grow_below infinite) is capped by the target.
+TEST_F(SessionTest, SampleTargetIsHitExactly) {
+  RenderSessionOptions o;
+  o.target.samples = 1000;
+  o.batch.grow_below = kAlways;
+  RenderSession session(renderer, o);
+  EXPECT_EQ(run(session), (std::vector<int64_t>{1, 3, 7, 15, 31, 63, 127, 255, 511, 1000}));
+  EXPECT_TRUE(session.done());
+  EXPECT_FALSE(session.cancelled());
+  EXPECT_EQ(renderer.sample_count(), 1000);
+  EXPECT_EQ(session.progress(), 1.0f);
+  EXPECT_GT(session.seconds(), 0.0);
+  EXPECT_EQ(session.step(), 0);  // done: nothing more is traced
+  EXPECT_EQ(renderer.sample_count(), 1000);
+}
+
+TEST_F(SessionTest, BatchStopsAtItsMaximumAndHalvesAfterSlowPasses) {
+  RenderSessionOptions o;
+  o.target.samples = 40;
+  o.batch.grow_below = kAlways;
+  o.batch.max_batch = 8;
+  RenderSession grows(renderer, o);
+  EXPECT_EQ(run(grows), (std::vector<int64_t>{1, 3, 7, 15, 23, 31, 39, 40}));
+
+  renderer.sync(test::empty_scene(), 8, 8);  // a new scene: the accumulation restarts at 0
+  ASSERT_EQ(renderer.sample_count(), 0);
+  o.target.samples = 10;
+  o.batch = {.first_batch = 8, .max_batch = 8, .grow_below = 0, .shrink_above = 0};  // every pass is "slow"
+  RenderSession shrinks(renderer, o);
+  EXPECT_EQ(run(shrinks), (std::vector<int64_t>{8, 10}));  // 8, then the halved batch capped at the target
+}
+
+// Every power of two and the target are reached exactly, whatever the batch; passes between
+// them are not checkpoints.
+TEST_F(SessionTest, CheckpointsAreHitExactly) {
+  RenderSessionOptions o;
+  o.target.samples = 20;
+  o.batch.grow_below = kAlways;
+  o.batch.max_batch = 4;
+  o.checkpoints = true;
+  RenderSession session(renderer, o);
+  std::vector<int64_t> checkpoints, others;
+  session.run([&](RenderSession& s) { (s.at_checkpoint() ? checkpoints : others).push_back(s.samples()); });
+  EXPECT_EQ(checkpoints, (std::vector<int64_t>{1, 2, 4, 8, 16, 20}));
+  EXPECT_EQ(others, (std::vector<int64_t>{12}));
+}
+
+// step() with time to spare still returns at a checkpoint, so that the caller sees it.
+TEST_F(SessionTest, StepReturnsAtACheckpoint) {
+  RenderSessionOptions o;
+  o.target.samples = 64;
+  o.batch.grow_below = kAlways;
+  o.checkpoints = true;
+  RenderSession session(renderer, o);
+  EXPECT_EQ(session.step(60.0), 1);
+  EXPECT_TRUE(session.at_checkpoint());
+  EXPECT_EQ(session.step(60.0), 1);
+  EXPECT_EQ(session.samples(), 2);
+}
+
+// A time target traces until its seconds are spent: the last pass started before them.
+TEST_F(SessionTest, TimeTargetStopsAfterItsTime) {
+  RenderSessionOptions o;
+  o.target = {.samples = 0, .seconds = 0.2};
+  o.batch.max_batch = 1;
+  o.checkpoints = true;  // powers of two only
+  RenderSession session(renderer, o);
+  double before_last_pass = 0;
+  std::vector<int64_t> checkpoints;
+  while (!session.done()) {
+    before_last_pass = session.seconds();
+    EXPECT_LT(session.progress(), 1.0f);
+    session.step();
+    if (session.at_checkpoint()) checkpoints.push_back(session.samples());
+  }
+  EXPECT_GE(session.seconds(), 0.2);
+  EXPECT_LT(before_last_pass, 0.2);
+  EXPECT_EQ(session.samples(), renderer.sample_count());
+  EXPECT_GT(session.samples(), 0);
+  EXPECT_EQ(session.progress(), 1.0f);
+  ASSERT_FALSE(checkpoints.empty());
+  for (size_t i = 0; i < checkpoints.size(); ++i) EXPECT_EQ(checkpoints[i], int64_t(1) << i);
+}
+
+TEST_F(SessionTest, CancelStopsTracing) {
+  RenderSessionOptions o;
+  o.target.samples = 1000;
+  o.batch.max_batch = 1;
+  RenderSession session(renderer, o);
+  session.run([](RenderSession& s) {
+    if (s.samples() == 5) s.cancel();
+  });
+  EXPECT_TRUE(session.cancelled());
+  EXPECT_TRUE(session.done());
+  EXPECT_EQ(renderer.sample_count(), 5);
+  EXPECT_EQ(session.step(1.0), 0);
+  EXPECT_EQ(renderer.sample_count(), 5);
+  EXPECT_LT(session.progress(), 0.01f);
+}
+
+TEST_F(SessionTest, NeedsATarget) {
+  RenderSessionOptions o;
+  o.target.samples = 0;
+  EXPECT_THROW(RenderSession(renderer, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace glint
