@@ -17,6 +17,7 @@
 #include "editor/file_dialogs.h"
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
+#include "renderer/backend_choice.h"
 #include "renderer/image.h"
 #include "renderer/program_worker.h"
 
@@ -30,13 +31,16 @@ namespace {
 
 const char* const kUsage =
     "usage: glint [PROJECT.glint] [--size WxH] [--frames N] [--screenshot FILE.png [--spp N]]\n"
+    "             [--backend auto|fragment|compute]\n"
     "\n"
     "Opens the editor (a window: needs a display, e.g. xvfb-run on a server).\n"
     "  --size WxH           window size in screen coordinates (default 1280x800)\n"
     "  --frames N           close after N frames, dropping unsaved changes (for scripts)\n"
     "  --screenshot FILE    render, save a PNG of the whole window and exit: after --frames N\n"
     "                       (default 60), or with --spp N once the viewport has N samples per\n"
-    "                       pixel; such runs neither offer a crash recovery nor autosave\n";
+    "                       pixel; such runs neither offer a crash recovery nor autosave\n"
+    "  --backend B          trace with the fragment or the compute shader; auto (the default)\n"
+    "                       takes the faster on this device, as `glint render` does\n";
 
 void glfw_error(int code, const char* text) { std::fprintf(stderr, "glint: GLFW error %d: %s\n", code, text); }
 
@@ -119,6 +123,15 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
       }
       o.width = w;
       o.height = h;
+    } else if (a == "--backend") {
+      auto v = value();
+      if (!v) return std::nullopt;
+      if (*v == "auto") o.backend.reset();
+      else if (auto b = parse_backend(*v)) o.backend = *b;
+      else {
+        error = "--backend expects auto, fragment or compute, got '" + *v + "'";
+        return std::nullopt;
+      }
     } else if (!a.empty() && a[0] == '-') {
       error = "unknown option " + a;
       return std::nullopt;
@@ -208,8 +221,16 @@ int run_editor(const EditorOptions& options) {
           [] { glfwMakeContextCurrent(nullptr); }});
     std::unique_ptr<ViewportRenderer> viewport;
     try {
+      if (options.backend) {
+        state.trace_backend = *options.backend;
+      } else {
+        const BackendChoice choice = choose_backend();
+        if (!choice.note.empty()) std::fprintf(stderr, "glint: note: %s\n", choice.note.c_str());
+        state.trace_backend = choice.backend;
+      }
       GpuRendererOptions renderer_options;
       renderer_options.worker = state.shader_worker;
+      renderer_options.backend = state.trace_backend;
       viewport = std::make_unique<ViewportRenderer>(renderer_options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "glint: %s\n", e.what());

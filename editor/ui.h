@@ -22,6 +22,7 @@
 #include "editor/document.h"
 #include "editor/export_job.h"
 #include "renderer/render_options.h"
+#include "renderer/trace_backend.h"
 #include "editor/thumbnails.h"
 
 namespace glint {
@@ -60,6 +61,8 @@ struct EditorState {
   // Builds specialised trace programs off the UI thread for the viewport and exports (null:
   // they are built on the UI thread; see renderer/program_worker.h).
   std::shared_ptr<ProgramWorker> shader_worker;
+  // The entry point the viewport and exports trace with (renderer/backend_choice.h).
+  TraceBackend trace_backend = TraceBackend::fragment;
 
   // Viewport tools and drags.
   bool focus_tool = false;   // a click sets the focus distance instead of selecting
