@@ -115,6 +115,10 @@ BackendTiming time_backends() {
   return {median(rate[0]), median(rate[1])};
 }
 
+bool prefers_compute(const BackendTiming& t) {
+  return t.compute_spp_s > kComputeMargin * t.fragment_spp_s;
+}
+
 BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_file) {
   const auto start = Clock::now();
   BackendChoice choice;
@@ -139,8 +143,7 @@ BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_f
   const BackendTiming timing = time_backends();
   choice.fragment_spp_s = timing.fragment_spp_s;
   choice.compute_spp_s = timing.compute_spp_s;
-  choice.backend = timing.compute_spp_s > timing.fragment_spp_s ? TraceBackend::compute
-                                                                 : TraceBackend::fragment;
+  choice.backend = prefers_compute(timing) ? TraceBackend::compute : TraceBackend::fragment;
   if (cache_file) {
     if (!cache.contains("devices")) cache = {{"devices", nlohmann::json::object()}};
     cache["devices"][key] = {{"backend", backend_name(choice.backend)},

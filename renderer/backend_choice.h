@@ -42,6 +42,13 @@ struct BackendTiming {
 };
 BackendTiming time_backends();
 
+// Compute is chosen only when it is this much faster: on llvmpipe the two are within the
+// timing's noise of each other on some scenes (bench/THROUGHPUT.md), and a choice that flips
+// with the machine's load would be cached either way; where compute matters (GPUs that run
+// fragment shaders on a few units) it is expected to be many times faster.
+constexpr double kComputeMargin = 1.1;
+bool prefers_compute(const BackendTiming& timing);
+
 // The cached choice for the current context's device, or time_backends() and the cache
 // written (renderer/atomic_file.h). An unreadable or corrupt cache is timed again and
 // replaced; other devices' entries are kept.

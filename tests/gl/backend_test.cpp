@@ -1,13 +1,16 @@
 // The two entry points of the path tracer (renderer/trace_backend.h) give the same image, and
 // the automatic choice between them (renderer/backend_choice.h) caches per device.
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "renderer/backend_choice.h"
+#include "renderer/program_worker.h"
 #include "renderer/project_file.h"
 #include "tests/gl/gl_test_support.h"
 #include "tests/temp_dir.h"
@@ -97,6 +100,37 @@ TEST(GlBackends, SameImageWithSpecialisedPrograms) {
   EXPECT_LE(test::max_relative_difference(images[1], images[0]), kTolerance);
 }
 
+// The compute path's specialised program built on the worker thread (renderer/program_worker.h):
+// the passes switch to it once it is ready, and the image is still the fragment path's.
+TEST(GlBackends, ComputeVariantBuiltOnTheWorker) {
+  HeadlessGLContext& main = test::ensure_gl_context();
+  std::unique_ptr<HeadlessGLContext> shared = main.create_shared();
+  auto worker = std::make_shared<ProgramWorker>(SharedContextHooks{
+      [&] { shared->make_current(); }, [&] { shared->release_current(); }});
+  const Scene scene = load_project(GLINT_SOURCE_DIR "/projects/roughness_ladder.glint");
+  GpuRendererOptions options;
+  options.backend = TraceBackend::compute;
+  options.worker = worker;
+  GpuRenderer compute(options);
+  compute.sync(scene, kWidth, kHeight);
+  const auto start = std::chrono::steady_clock::now();
+  // Without Mesa's shader cache the worker's build takes several seconds (its probes compile
+  // the program again, renderer/program_worker.cpp); the generic program traces meanwhile.
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  while (seconds() < 120) {
+    compute.trace(1);
+    if (!compute.last_pass_generic()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_FALSE(compute.last_pass_generic()) << "no specialised pass within " << seconds() << " s";
+  auto fragment = make_renderer(TraceBackend::fragment, true);
+  fragment->sync(scene, kWidth, kHeight);
+  for (int64_t n = compute.sample_count(); n > 0; n -= 1) fragment->trace(1);
+  EXPECT_LE(test::max_relative_difference(compute.read_accumulation(), fragment->read_accumulation()),
+            kTolerance);
+  worker.reset();
+}
+
 nlohmann::json read_json(const std::filesystem::path& file) {
   std::ifstream in(file);
   return nlohmann::json::parse(in, nullptr, false);
@@ -111,8 +145,9 @@ TEST(GlBackendChoice, WritesItsCacheAndReadsItWithoutTiming) {
   EXPECT_TRUE(first.note.empty()) << first.note;
   EXPECT_GT(first.fragment_spp_s, 0);
   EXPECT_GT(first.compute_spp_s, 0);
-  EXPECT_EQ(first.backend, first.compute_spp_s > first.fragment_spp_s ? TraceBackend::compute
-                                                                      : TraceBackend::fragment);
+  EXPECT_EQ(first.backend, prefers_compute({first.fragment_spp_s, first.compute_spp_s})
+                               ? TraceBackend::compute
+                               : TraceBackend::fragment);
   const nlohmann::json cache = read_json(file);
   ASSERT_TRUE(cache.is_object());
   EXPECT_EQ(cache["devices"][device_key()]["backend"], backend_name(first.backend));
@@ -153,6 +188,14 @@ TEST(GlBackendChoice, CorruptOrUnwritableCacheStillGivesAChoice) {
   EXPECT_FALSE(unwritable.from_cache);
   EXPECT_NE(unwritable.note.find("backend cache not written"), std::string::npos) << unwritable.note;
   EXPECT_EQ(unwritable.note.find('\n'), std::string::npos);
+}
+
+TEST(GlBackendChoice, ComputeOnlyWhenClearlyFaster) {
+  EXPECT_FALSE(prefers_compute({100, 100}));
+  EXPECT_FALSE(prefers_compute({100, 109}));  // within the margin: the fragment path stays
+  EXPECT_TRUE(prefers_compute({100, 111}));
+  EXPECT_TRUE(prefers_compute({60, 1800}));
+  EXPECT_FALSE(prefers_compute({1800, 60}));
 }
 
 TEST(GlBackendChoice, CacheFileFollowsXdgCacheHomeThenHome) {
