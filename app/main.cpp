@@ -20,7 +20,9 @@ const char* const kHelp =
     "  --frames N           close after N frames, dropping unsaved changes (for scripts)\n"
     "  --screenshot FILE    save a PNG of the window after --frames N (default 60) or once\n"
     "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
-    "                       neither offer a crash recovery nor autosave)\n";
+    "                       neither offer a crash recovery nor autosave)\n"
+    "  --backend B          auto (the default: the faster on this device), fragment or\n"
+    "                       compute: the path tracer's entry point (same image)\n";
 
 }  // namespace
 

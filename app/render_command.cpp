@@ -15,6 +15,7 @@
 
 #include "app/progress_bar.h"
 #include "renderer/atomic_file.h"
+#include "renderer/backend_choice.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
@@ -34,6 +35,7 @@ const char* const kUsage =
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
+    "                    [--backend auto|fragment|compute] [--work-group WxH]\n"
     "\n"
     "Renders a project headlessly (EGL; no window or display needed).\n"
     "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
@@ -73,6 +75,13 @@ const char* const kUsage =
     "                     would exceed Mesa llvmpipe's shader loop limit), loop (test every\n"
     "                     shape for every ray), or bvh (bounding volume hierarchy, built\n"
     "                     before the clock starts; its build time is printed)\n"
+    "Trace backend (same image either way):\n"
+    "  --backend B        auto (the default: the faster on this device, timed once on a\n"
+    "                     small scene and cached in $XDG_CACHE_HOME/glint/backend.json,\n"
+    "                     else ~/.cache/glint/backend.json, per GL vendor, renderer and\n"
+    "                     version), fragment (a fragment shader per pass) or compute (a\n"
+    "                     compute shader writing the accumulation in place)\n"
+    "  --work-group WxH   the compute shader's work group (default 8x8; for measuring)\n"
     "Exit codes: 0 done, 1 bad project or failed render (or the output or log could not\n"
     "be written), 2 bad arguments (also: a --width/--height beyond the film limits, a\n"
     "--log or -o that would overwrite the project, the reference or each other).\n";
@@ -87,6 +96,8 @@ struct Options {
   std::string log;
   RenderOptions estimator;
   bool generic_shader = false;
+  std::optional<TraceBackend> backend;  // nullopt: the automatic choice
+  WorkGroup work_group;
 };
 
 struct UsageError {
@@ -127,7 +138,16 @@ Options parse(int argc, char** argv) {
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
     else if (a == "--reference") o.reference = value();
     else if (a == "--log") o.log = value();
-    else if (a == "--sampler") {
+    else if (a == "--backend") {
+      std::string v = value();
+      if (v == "auto") o.backend.reset();
+      else if (auto b = parse_backend(v)) o.backend = *b;
+      else throw UsageError{"--backend expects auto, fragment or compute, got '" + v + "'"};
+    } else if (a == "--work-group") {
+      std::string v = value();
+      if (auto g = parse_work_group(v)) o.work_group = *g;
+      else throw UsageError{"--work-group expects WxH with W*H from 1 to 1024 (e.g. 8x8), got '" + v + "'"};
+    } else if (a == "--sampler") {
       std::string v = value();
       if (v == "pcg") o.estimator.sampler = SamplerKind::pcg;
       else if (v == "sobol") o.estimator.sampler = SamplerKind::sobol;
@@ -318,6 +338,18 @@ int run_render_command(int argc, char** argv) {
                  gl_renderer_name().c_str(), context->platform().c_str());
     GpuRendererOptions renderer_options;
     renderer_options.force_generic_shader = o.generic_shader;
+    renderer_options.work_group = o.work_group;
+    if (o.backend) {
+      renderer_options.backend = *o.backend;
+      std::fprintf(stderr, "glint: trace backend: %s (--backend)\n", backend_name(*o.backend));
+    } else {
+      const BackendChoice choice = choose_backend();
+      renderer_options.backend = choice.backend;
+      if (!choice.note.empty()) std::fprintf(stderr, "note: %s\n", choice.note.c_str());
+      std::fprintf(stderr, "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; %.2f s)\n",
+                   backend_name(choice.backend), choice.from_cache ? "cached" : "timed now",
+                   choice.fragment_spp_s, choice.compute_spp_s, choice.seconds);
+    }
     GpuRenderer renderer(renderer_options);
     renderer.set_options(o.estimator);
     if (o.estimator.clamp > 0)

@@ -3,7 +3,7 @@
 # from this table (renderer/shader_sources.cpp); C++ tests include the same files directly.
 function(glint_embed_shaders target shader_dir)
   file(GLOB_RECURSE _files CONFIGURE_DEPENDS RELATIVE "${shader_dir}" "${shader_dir}/*.glsl"
-       "${shader_dir}/*.vert" "${shader_dir}/*.frag")
+       "${shader_dir}/*.vert" "${shader_dir}/*.frag" "${shader_dir}/*.comp")
   set(_out "${CMAKE_CURRENT_BINARY_DIR}/embedded_shaders.cpp")
   set(_abs)
   foreach(f IN LISTS _files)

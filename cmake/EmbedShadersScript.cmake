@@ -1,6 +1,6 @@
 # Script mode: writes OUT, a C++ file defining glint::embedded_shaders() from SHADER_DIR.
 file(GLOB_RECURSE FILES RELATIVE "${SHADER_DIR}" "${SHADER_DIR}/*.glsl" "${SHADER_DIR}/*.vert"
-     "${SHADER_DIR}/*.frag")
+     "${SHADER_DIR}/*.frag" "${SHADER_DIR}/*.comp")
 list(SORT FILES)
 set(_body "")
 foreach(f IN LISTS FILES)

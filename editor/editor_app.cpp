@@ -18,6 +18,7 @@
 #include "editor/recent_and_recovery.h"
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
+#include "renderer/backend_choice.h"
 #include "renderer/image.h"
 #include "renderer/program_worker.h"
 
@@ -150,10 +151,20 @@ bool start_session(Document& doc, EditorState& state, const EditorOptions& optio
 }
 
 // Null (and a message) when the trace shader cannot be built.
-std::unique_ptr<ViewportRenderer> make_viewport(const EditorState& state) {
+// The viewport renderer, with the backend forced by --backend or chosen for this device
+// (renderer/backend_choice.h); exports trace with the same one.
+std::unique_ptr<ViewportRenderer> make_viewport(EditorState& state, const EditorOptions& options) {
   try {
+    if (options.backend) {
+      state.trace_backend = *options.backend;
+    } else {
+      const BackendChoice choice = choose_backend();
+      if (!choice.note.empty()) std::fprintf(stderr, "glint: note: %s\n", choice.note.c_str());
+      state.trace_backend = choice.backend;
+    }
     GpuRendererOptions renderer_options;
     renderer_options.worker = state.shader_worker;
+    renderer_options.backend = state.trace_backend;
     return std::make_unique<ViewportRenderer>(renderer_options);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint: %s\n", e.what());
@@ -283,6 +294,15 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
       }
       o.width = w;
       o.height = h;
+    } else if (a == "--backend") {
+      auto v = value();
+      if (!v) return std::nullopt;
+      if (*v == "auto") o.backend.reset();
+      else if (auto b = parse_backend(*v)) o.backend = *b;
+      else {
+        error = "--backend expects auto, fragment or compute, got '" + *v + "'";
+        return std::nullopt;
+      }
     } else if (!a.empty() && a[0] == '-') {
       error = "unknown option " + a;
       return std::nullopt;
@@ -311,7 +331,7 @@ int run_editor(const EditorOptions& options) {
     Document doc;
     EditorState state;
     if (!start_session(doc, state, options, windows->worker)) exit_code = 1;
-    std::unique_ptr<ViewportRenderer> viewport = make_viewport(state);
+    std::unique_ptr<ViewportRenderer> viewport = make_viewport(state, options);
     if (!viewport) exit_code = 1;
 
     int frame = 0;

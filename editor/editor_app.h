@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "renderer/trace_backend.h"
+
 namespace glint {
 
 struct EditorOptions {
@@ -13,6 +15,7 @@ struct EditorOptions {
   int frames = 0;                    // with --screenshot: after this many frames (0: see spp)
   int64_t spp = 0;                   // with --screenshot: once the viewport has this many spp
   int width = 1280, height = 800;    // window size in screen coordinates
+  std::optional<TraceBackend> backend;  // nullopt: the automatic choice (renderer/backend_choice.h)
 };
 
 // Runs until the window is closed (after the unsaved-changes prompt). Returns the exit code.

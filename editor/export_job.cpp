@@ -30,7 +30,8 @@ std::string validate_export_settings(const ExportSettings& s) {
   return "";
 }
 
-ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker)
+ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker,
+                     TraceBackend backend)
     : scene_(scene), settings_(std::move(settings)) {
   if (std::string problem = validate_export_settings(settings_); !problem.empty())
     throw std::runtime_error(problem);
@@ -42,6 +43,7 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
   if (!errors.empty()) throw std::runtime_error(errors.front().what());
   GpuRendererOptions options;
   options.worker = std::move(worker);
+  options.backend = backend;
   renderer_ = std::make_unique<GpuRenderer>(options);
   renderer_->set_options(settings_.estimator);
   renderer_->sync(scene_, settings_.width, settings_.height);

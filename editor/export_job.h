@@ -11,6 +11,7 @@
 
 #include "renderer/render_options.h"
 #include "renderer/scene.h"
+#include "renderer/trace_backend.h"
 
 namespace glint {
 
@@ -39,7 +40,8 @@ class ExportJob {
   // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting
   // and, before rendering, when the output cannot be written (file_write_problem).
   // `worker` (may be null) builds the specialised trace program off the UI thread.
-  ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker = nullptr);
+  ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker = nullptr,
+            TraceBackend backend = TraceBackend::fragment);
   ~ExportJob();
   ExportJob(const ExportJob&) = delete;
   ExportJob& operator=(const ExportJob&) = delete;

@@ -25,6 +25,7 @@
 #include "editor/thumbnails.h"
 #include "editor/viewport_frame.h"
 #include "renderer/render_options.h"
+#include "renderer/trace_backend.h"
 
 namespace glint {
 
@@ -125,6 +126,8 @@ struct EditorState {
   // Builds specialised trace programs off the UI thread for the viewport and exports (null:
   // they are built on the UI thread; see renderer/program_worker.h).
   std::shared_ptr<ProgramWorker> shader_worker;
+  // The entry point the viewport and exports trace with (renderer/backend_choice.h).
+  TraceBackend trace_backend = TraceBackend::fragment;
   ThumbnailCache thumbnails;
 };
 

@@ -102,7 +102,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     if (ImGui::Button("Render", ImVec2(120, 0))) {
       try {
         s.estimator = state.viewport.estimator;
-        state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker);
+        state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker, state.trace_backend);
         state.export_ui.message.clear();
       } catch (const std::exception& e) {
         show_error(state, std::string("Cannot export: ") + e.what());

@@ -46,7 +46,7 @@ EnvironmentDistribution build_environment_distribution(const Image& image);
 // The tables as one float array for a std430 storage buffer (float stride 4, no padding):
 //   data[i]                                  marginal CDF, i in [0, height]
 //   data[(height + 1) + row * (width + 1) + i]  conditional CDF of row, i in [0, width]
-// width and height go in a uniform. trace.frag then defines, before including
+// width and height go in a uniform. trace_common.glsl then defines, before including
 // lib/environment_sampling.glsl:
 //   layout(std430, binding = N) readonly buffer EnvDistribution { float env_cdf[]; };
 //   uniform ivec2 u_env_distribution_size;

@@ -35,27 +35,41 @@ bool has_parallel_shader_compile() {
          epoxy_has_gl_extension("GL_ARB_parallel_shader_compile");
 }
 
-GlProgram::GlProgram(Deferred, const std::string& vertex_name, const std::string& fragment_name,
-                     const std::string& defines)
-    : names_{vertex_name, fragment_name} {
-  shaders_[0] = issue_compile(GL_VERTEX_SHADER, vertex_name, "");
-  shaders_[1] = issue_compile(GL_FRAGMENT_SHADER, fragment_name, defines);
+GlProgram::GlProgram(Deferred, const std::vector<Stage>& stages, const std::string& defines) {
   id_ = glCreateProgram();
-  glAttachShader(id_, shaders_[0]);
-  glAttachShader(id_, shaders_[1]);
+  for (size_t i = 0; i < stages.size() && i < 2; ++i) {
+    names_[i] = stages[i].name;
+    shaders_[i] = issue_compile(stages[i].type, stages[i].name, i + 1 == stages.size() ? defines : "");
+    glAttachShader(id_, shaders_[i]);
+  }
   glLinkProgram(id_);
 }
 
 GlProgram::GlProgram(const std::string& vertex_name, const std::string& fragment_name,
                      const std::string& defines)
-    : GlProgram(Deferred{}, vertex_name, fragment_name, defines) {
+    : GlProgram(Deferred{}, {{GL_VERTEX_SHADER, vertex_name}, {GL_FRAGMENT_SHADER, fragment_name}},
+                defines) {
   finish();
 }
 
 std::unique_ptr<GlProgram> GlProgram::start(const std::string& vertex_name,
                                             const std::string& fragment_name,
                                             const std::string& defines) {
-  return std::unique_ptr<GlProgram>(new GlProgram(Deferred{}, vertex_name, fragment_name, defines));
+  return std::unique_ptr<GlProgram>(new GlProgram(
+      Deferred{}, {{GL_VERTEX_SHADER, vertex_name}, {GL_FRAGMENT_SHADER, fragment_name}}, defines));
+}
+
+std::unique_ptr<GlProgram> GlProgram::start_compute(const std::string& compute_name,
+                                                    const std::string& defines) {
+  return std::unique_ptr<GlProgram>(
+      new GlProgram(Deferred{}, {{GL_COMPUTE_SHADER, compute_name}}, defines));
+}
+
+std::unique_ptr<GlProgram> GlProgram::compute(const std::string& compute_name,
+                                              const std::string& defines) {
+  auto program = start_compute(compute_name, defines);
+  program->finish();
+  return program;
 }
 
 bool GlProgram::ready() const {
@@ -69,6 +83,7 @@ void GlProgram::finish() {
   if (finished_) return;
   std::string error;
   for (int i = 0; i < 2 && error.empty(); ++i) {
+    if (!shaders_[i]) continue;
     GLint ok = 0;
     glGetShaderiv(shaders_[i], GL_COMPILE_STATUS, &ok);
     if (!ok) error = "shaders/" + names_[i] + " failed to compile:\n" + shader_log(shaders_[i]);
@@ -81,10 +96,11 @@ void GlProgram::finish() {
       glGetProgramiv(id_, GL_INFO_LOG_LENGTH, &length);
       std::vector<char> log(static_cast<size_t>(length) + 1);
       glGetProgramInfoLog(id_, length, nullptr, log.data());
-      error = names_[0] + " + " + names_[1] + " failed to link:\n" + log.data();
+      error = (names_[1].empty() ? names_[0] : names_[0] + " + " + names_[1]) + " failed to link:\n" + log.data();
     }
   }
   for (GLuint& s : shaders_) {
+    if (!s) continue;
     glDetachShader(id_, s);
     glDeleteShader(s);
     s = 0;

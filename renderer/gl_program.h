@@ -1,9 +1,11 @@
-// A linked GLSL program from embedded shader files, with cached uniform look-ups.
+// A linked GLSL program from embedded shader files, with cached uniform look-ups: a vertex and
+// a fragment shader, or one compute shader.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
@@ -26,6 +28,11 @@ class GlProgram {
   static std::unique_ptr<GlProgram> start(const std::string& vertex_name,
                                           const std::string& fragment_name,
                                           const std::string& defines = "");
+  // The same for a compute program (`defines` after the compute shader's #version line).
+  static std::unique_ptr<GlProgram> compute(const std::string& compute_name,
+                                            const std::string& defines = "");
+  static std::unique_ptr<GlProgram> start_compute(const std::string& compute_name,
+                                                  const std::string& defines = "");
   // GL_COMPLETION_STATUS_KHR of the link where the extension exists; true otherwise (a query
   // of the link status would block until the driver is done).
   bool ready() const;
@@ -41,11 +48,15 @@ class GlProgram {
 
  private:
   struct Deferred {};
-  GlProgram(Deferred, const std::string& vertex_name, const std::string& fragment_name,
-            const std::string& defines);
+  struct Stage {
+    GLenum type;
+    std::string name;
+  };
+  // Compiles the stages (`defines` go into the last one) and links, without waiting.
+  GlProgram(Deferred, const std::vector<Stage>& stages, const std::string& defines);
   GLint location(const char* name);
   GLuint id_ = 0;
-  GLuint shaders_[2] = {0, 0};  // attached until finish() has read their logs
+  GLuint shaders_[2] = {0, 0};  // attached until finish() has read their logs; 0: no stage
   std::string names_[2];
   bool finished_ = false;
   std::unordered_map<std::string, GLint> locations_;

@@ -77,7 +77,8 @@ GLuint make_framebuffer(GLuint texture, GLuint second = 0) {
 }  // namespace
 
 GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options) {
-  trace_program_ = std::make_unique<GlProgram>("fullscreen.vert", "trace.frag");
+  trace_program_ = start_trace_program(options.backend, options.work_group, "");
+  trace_program_->finish();
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(kBuffers, buffers_);
@@ -99,7 +100,8 @@ GpuRenderer::~GpuRenderer() {
 
 void GpuRenderer::resize(int width, int height) {
   if (accumulation_[0]) {
-    glDeleteFramebuffers(2, accumulation_fbo_);
+    glDeleteFramebuffers(2, accumulation_fbo_);  // names of 0 are ignored
+    accumulation_fbo_[0] = accumulation_fbo_[1] = 0;
     glDeleteTextures(2, accumulation_);
     glDeleteTextures(2, compensation_);
     glDeleteFramebuffers(1, &display_fbo_);
@@ -109,10 +111,11 @@ void GpuRenderer::resize(int width, int height) {
   width_ = width;
   height_ = height;
   if (width <= 0 || height <= 0) return;
-  for (int i = 0; i < 2; ++i) {
+  const bool compute = renderer_options_.backend == TraceBackend::compute;
+  for (int i = 0; i < (compute ? 1 : 2); ++i) {
     accumulation_[i] = make_texture_2d(GL_RGBA32F, width, height);
     compensation_[i] = make_texture_2d(GL_RGBA32F, width, height);
-    accumulation_fbo_[i] = make_framebuffer(accumulation_[i], compensation_[i]);
+    if (!compute) accumulation_fbo_[i] = make_framebuffer(accumulation_[i], compensation_[i]);
   }
   display_texture_ = make_texture_2d(GL_RGBA8, width, height);
   // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
@@ -533,24 +536,34 @@ void GpuRenderer::prepare_specialised_program() {
 // replace a texture meanwhile, the driver compiles again at that first pass (only slower).
 std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& defines) {
   auto job = std::make_shared<ProgramJob>();
-  job->vertex = "fullscreen.vert";
-  job->fragment = "trace.frag";
-  job->defines = defines;
+  const bool compute = renderer_options_.backend == TraceBackend::compute;
+  if (compute) {
+    job->compute = "trace.comp";
+    job->defines = work_group_defines(renderer_options_.work_group) + defines;
+  } else {
+    job->vertex = "fullscreen.vert";
+    job->fragment = "trace.frag";
+    job->defines = defines;
+  }
   const TraceUniforms uniforms = uniforms_;
   const GLuint textures[5] = {accumulation_[current_], texel_textures_[0], environment_texture_,
                               compensation_[current_], texel_textures_[1]};
   std::vector<GLuint> buffers(buffers_, buffers_ + kBuffers);
-  job->warm_up = [uniforms, textures, buffers](GlProgram& p) {
-    // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
-    GLuint target[2] = {make_texture_2d(GL_RGBA32F, 1, 1), make_texture_2d(GL_RGBA32F, 1, 1)};
-    GLuint fbo = make_framebuffer(target[0], target[1]);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  job->warm_up = [uniforms, textures, buffers, compute](GlProgram& p) {
     apply_trace_uniforms(p, uniforms);
     p.set("u_resolution", glm::ivec2(1, 1));
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
     for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
     for (GLuint i = 0; i < 5; ++i) glBindTextureUnit(i, textures[i]);
+    if (compute) {
+      warm_up_compute_pass();
+      return;
+    }
+    // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
+    GLuint target[2] = {make_texture_2d(GL_RGBA32F, 1, 1), make_texture_2d(GL_RGBA32F, 1, 1)};
+    GLuint fbo = make_framebuffer(target[0], target[1]);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
@@ -574,40 +587,51 @@ void GpuRenderer::start_variant_if_missing() {
   if (renderer_options_.worker)
     v.job = submit_variant_job(wanted);
   else
-    v.program = GlProgram::start("fullscreen.vert", "trace.frag", wanted);
+    v.program = start_trace_program(renderer_options_.backend, renderer_options_.work_group, wanted);
   variants_.push_back(std::move(v));
 }
 
-// Binds program, buffers and textures for a pass that adds `samples` samples into the spare
-// accumulation buffer.
+// Binds program, buffers and textures for a pass that adds `samples` samples: into the spare
+// accumulation buffer (fragment), or in place (compute).
 GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   GlProgram& p = choose_trace_program();
   apply_trace_uniforms(p, uniforms_);
   p.set("u_resolution", glm::ivec2(width_, height_));
   p.set("u_samples_before", static_cast<unsigned>(samples_));
   p.set("u_samples_per_pass", samples);
+  glUseProgram(p.id());
+  for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  glBindTextureUnit(1, texel_textures_[0]);
+  glBindTextureUnit(2, environment_texture_);
+  glBindTextureUnit(4, texel_textures_[1]);
+  if (renderer_options_.backend == TraceBackend::compute) {
+    bind_trace_images(accumulation_[0], compensation_[0]);
+    return p;
+  }
   glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[1 - current_]);
   glViewport(0, 0, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
-  glUseProgram(p.id());
-  for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(0, accumulation_[current_]);
-  glBindTextureUnit(1, texel_textures_[0]);
-  glBindTextureUnit(2, environment_texture_);
   glBindTextureUnit(3, compensation_[current_]);
-  glBindTextureUnit(4, texel_textures_[1]);
   glBindVertexArray(vao_);
   return p;
 }
 
 // One pixel of the spare buffer, no samples (it is overwritten by the next pass): a driver that
 // compiles at the first draw (Mesa's llvmpipe JITs then, 0.6-1 s) does it here, not inside the
-// first timed pass.
+// first timed pass. The compute path has no spare buffer: one group with a resolution of 0x0,
+// whose invocations all return before touching the images.
 void GpuRenderer::warm_up_trace_program() {
   if (width_ <= 0) return;
-  bind_trace_pass(0);
+  GlProgram& p = bind_trace_pass(0);
+  if (renderer_options_.backend == TraceBackend::compute) {
+    p.set("u_resolution", glm::ivec2(0, 0));
+    glDispatchCompute(1, 1, 1);
+    glFinish();
+    return;
+  }
   glViewport(0, 0, 1, 1);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -625,8 +649,12 @@ void GpuRenderer::trace(int samples) {
   for (int done = 0; done < samples;) {
     const int n = std::min(samples - done, samples_per_draw_);
     bind_trace_pass(n);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    current_ = 1 - current_;
+    if (renderer_options_.backend == TraceBackend::compute) {
+      dispatch_trace(width_, height_, renderer_options_.work_group);
+    } else {
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      current_ = 1 - current_;
+    }
     samples_ += n;
     done += n;
   }

@@ -2,10 +2,11 @@
 // context.
 //
 // Per frame: sync(scene) compares digests and uploads only what changed, restarting the
-// accumulation when radiance inputs changed; trace(k) adds k samples per pixel into ping-pong
-// RGBA32F buffers; update_display() re-runs the tonemap pass when its inputs changed. The
-// running mean is kept with Kahan compensation (a second RGBA32F pair; shaders/trace.frag) so
-// that 10^5 passes do not drift it (tests/soak, bench/SOAK.md).
+// accumulation when radiance inputs changed; trace(k) adds k samples per pixel, with the
+// fragment shader into ping-pong RGBA32F buffers or with the compute shader in place
+// (renderer/trace_backend.h); update_display() re-runs the tonemap pass when its inputs
+// changed. The running mean is kept with Kahan compensation (a second RGBA32F texture;
+// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +24,7 @@
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
 #include "renderer/shader_features.h"
+#include "renderer/trace_backend.h"
 
 namespace glint {
 
@@ -37,6 +39,9 @@ class ProgramWorker;
 struct ProgramJob;
 
 struct GpuRendererOptions {
+  // Which entry point traces (same image; renderer/backend_choice.h picks the faster one).
+  TraceBackend backend = TraceBackend::fragment;
+  WorkGroup work_group;  // of the compute shader
   // Always trace with the generic program (every feature compiled in): for measurements.
   bool force_generic_shader = false;
   // Where specialised programs are built (renderer/program_worker.h): off the calling thread,
@@ -114,6 +119,7 @@ class GpuRenderer {
     int max_steps = 0;      // the traversal's step cap (loop_budget.h)
   };
   const BvhStats& bvh_stats() const { return bvh_stats_; }
+  TraceBackend backend() const { return renderer_options_.backend; }
   int width() const { return width_; }
   int height() const { return height_; }
   GLuint display_texture() const { return display_texture_; }
@@ -181,6 +187,7 @@ class GpuRenderer {
   TraceUniforms uniforms_;
   std::unique_ptr<GlProgram> tonemap_program_;
   GLuint vao_ = 0;
+  // Fragment path: a ping-pong pair of each; compute path: [0] only, written in place.
   GLuint accumulation_[2] = {0, 0};
   GLuint compensation_[2] = {0, 0};      // what each accumulation's float32 mean could not hold
   GLuint accumulation_fbo_[2] = {0, 0};  // each draws into accumulation_[i] and compensation_[i]
@@ -195,7 +202,7 @@ class GpuRenderer {
   GLuint texel_textures_[2] = {0, 0};
   GLuint environment_texture_ = 0;
 
-  int current_ = 0;  // accumulation_[current_] holds the latest result
+  int current_ = 0;  // accumulation_[current_] holds the latest result (always 0 for compute)
   int width_ = 0;
   int height_ = 0;
   int64_t samples_ = 0;

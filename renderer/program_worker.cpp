@@ -71,6 +71,15 @@ double ProgramWorker::draw_once(ProgramJob& job, GlProgram& program) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+
+std::unique_ptr<GlProgram> link(const ProgramJob& job) {
+  if (!job.compute.empty()) return GlProgram::compute(job.compute, job.defines);
+  return std::make_unique<GlProgram>(job.vertex, job.fragment, job.defines);
+}
+
+}  // namespace
+
 void ProgramWorker::build(ProgramJob& job) {
   if (!healthy_) {
     job.error = "the shader worker has no OpenGL context: " + context_error_;
@@ -78,7 +87,7 @@ void ProgramWorker::build(ProgramJob& job) {
   }
   const auto start = std::chrono::steady_clock::now();
   try {
-    auto program = std::make_unique<GlProgram>(job.vertex, job.fragment, job.defines);
+    auto program = link(job);
     if (job.warm_up) {
       const double first = draw_once(job, *program);
       // llvmpipe writes the compiled code to its disk cache from a thread of minimum priority,
@@ -91,9 +100,9 @@ void ProgramWorker::build(ProgramJob& job) {
       // draw, as it would without the worker.
       for (int probe = 0; first > 0.05 && probe < 5; ++probe) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20 << probe));
-        GlProgram copy(job.vertex, job.fragment, job.defines);
+        auto copy = link(job);
         ++job.probes;
-        if (draw_once(job, copy) < first / 4) break;
+        if (draw_once(job, *copy) < first / 4) break;
       }
     }
     job.program = std::move(program);

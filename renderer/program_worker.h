@@ -35,9 +35,10 @@ struct SharedContextHooks {
 // One program to build. `warm_up` runs on the worker thread with the linked program in use, the
 // worker's context current and a vertex array bound: it binds what the renderer's draws bind
 // (a framebuffer of the same formats, made there since framebuffers are not shared; uniforms,
-// textures, buffers) and draws, so that the driver compiles the code the renderer will use.
+// textures, buffers) and draws (or dispatches, for a compute program), so that the driver compiles the code the renderer will use.
 struct ProgramJob {
   std::string vertex, fragment, defines;
+  std::string compute;  // set instead of vertex and fragment for a compute program
   std::function<void(GlProgram&)> warm_up;
 
   // Set by the worker; read them only once done() is true.

@@ -1,6 +1,6 @@
 // Which parts of the trace shader a scene needs ("model only what a scene needs").
 // Each feature that is absent becomes a `#define GLINT_NO_...` line after `#version` of
-// shaders/trace.frag; a macro that is not defined means the feature is present, so the C++
+// shaders/trace.frag and trace.comp; a macro that is not defined means the feature is present, so the C++
 // build of the shader library (renderer/shader_lib.h), which defines none, keeps every branch.
 // Only features whose removal makes the shader cheaper are listed; removing one never changes
 // the random-number sequence, so generic and specialised programs render the same image.

@@ -1,0 +1,165 @@
+#include "renderer/backend_choice.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include "renderer/atomic_file.h"
+#include "renderer/gl_context.h"
+#include "renderer/gpu_renderer.h"
+
+namespace glint {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The workload the two entry points differ on most: long matte paths, no textures, no
+// emitters, so the program is small and compiles fast.
+Scene timing_scene() {
+  Scene s;
+  s.camera.position = {0, 1.5f, 6};
+  s.camera.target = {0, 0.5f, 0};
+  s.camera.up = {0, 1, 0};
+  s.environment.color = {0.8f, 0.85f, 1.0f};
+  s.render.max_bounces = 4;
+  Material floor;
+  floor.name = "floor";
+  floor.color = {0.6f, 0.6f, 0.6f};
+  Material ball;
+  ball.name = "ball";
+  ball.color = {0.7f, 0.4f, 0.3f};
+  s.materials = {floor, ball};
+  Sphere ground;
+  ground.name = "ground";
+  ground.center = {0, -1000, 0};
+  ground.radius = 1000;
+  ground.material = "floor";
+  s.spheres.push_back(ground);
+  for (int i = 0; i < 8; ++i) {
+    Sphere b;
+    b.name = "ball" + std::to_string(i);
+    b.center = {-2.8f + 0.8f * i, 0.35f, -0.5f * (i % 3)};
+    b.radius = 0.35f;
+    b.material = "ball";
+    s.spheres.push_back(b);
+  }
+  return s;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+nlohmann::json read_cache(const std::filesystem::path& file, std::string& note) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return nlohmann::json::object();
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+  if (!in || j.is_discarded() || !j.is_object() || !j.contains("devices") || !j["devices"].is_object()) {
+    note = file.string() + ": unreadable backend cache, timed again";
+    return nlohmann::json::object();
+  }
+  return j;
+}
+
+}  // namespace
+
+std::string device_key() {
+  const GLubyte* vendor = glGetString(GL_VENDOR);
+  return std::string(vendor ? reinterpret_cast<const char*>(vendor) : "unknown") + " | " +
+         gl_renderer_name() + " | " + gl_version_string();
+}
+
+std::optional<std::filesystem::path> default_backend_cache_file() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "glint" / "backend.json";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "glint" / "backend.json";
+  return std::nullopt;
+}
+
+BackendTiming time_backends() {
+  const Scene scene = timing_scene();
+  constexpr int kSize = 128, kRounds = 3, kSpp = 2;
+  std::unique_ptr<GpuRenderer> renderers[2];
+  for (int b = 0; b < 2; ++b) {
+    GpuRendererOptions options;
+    options.backend = b ? TraceBackend::compute : TraceBackend::fragment;
+    renderers[b] = std::make_unique<GpuRenderer>(options);
+    renderers[b]->sync(scene, kSize, kSize);
+    renderers[b]->prepare_specialised_program();
+    renderers[b]->trace(1);  // the first pass may still set things up in the driver
+    glFinish();
+  }
+  std::vector<double> rate[2];
+  for (int round = 0; round < kRounds; ++round)
+    for (int b = 0; b < 2; ++b) {
+      const auto start = Clock::now();
+      renderers[b]->trace(kSpp);
+      glFinish();
+      rate[b].push_back(kSpp / std::max(seconds_since(start), 1e-9));
+    }
+  return {median(rate[0]), median(rate[1])};
+}
+
+bool prefers_compute(const BackendTiming& t) {
+  return t.compute_spp_s > kComputeMargin * t.fragment_spp_s;
+}
+
+BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_file) {
+  const auto start = Clock::now();
+  BackendChoice choice;
+  const std::string key = device_key();
+  nlohmann::json cache = nlohmann::json::object();
+  if (cache_file) {
+    cache = read_cache(*cache_file, choice.note);
+    if (cache.contains("devices")) {
+      const nlohmann::json& entry = cache["devices"].value(key, nlohmann::json());
+      if (entry.is_object() && entry.contains("backend") && entry["backend"].is_string()) {
+        if (auto backend = parse_backend(entry["backend"].get<std::string>())) {
+          choice.backend = *backend;
+          choice.from_cache = true;
+          choice.fragment_spp_s = entry.value("fragment_spp_s", 0.0);
+          choice.compute_spp_s = entry.value("compute_spp_s", 0.0);
+          choice.seconds = seconds_since(start);
+          return choice;
+        }
+      }
+    }
+  }
+  const BackendTiming timing = time_backends();
+  choice.fragment_spp_s = timing.fragment_spp_s;
+  choice.compute_spp_s = timing.compute_spp_s;
+  choice.backend = prefers_compute(timing) ? TraceBackend::compute : TraceBackend::fragment;
+  if (cache_file) {
+    if (!cache.contains("devices")) cache = {{"devices", nlohmann::json::object()}};
+    cache["devices"][key] = {{"backend", backend_name(choice.backend)},
+                             {"fragment_spp_s", choice.fragment_spp_s},
+                             {"compute_spp_s", choice.compute_spp_s}};
+    try {
+      std::error_code ec;
+      std::filesystem::create_directories(cache_file->parent_path(), ec);
+      const std::string text = cache.dump(2) + "\n";
+      write_file_atomically(*cache_file, text.data(), text.size());
+    } catch (const std::exception& e) {
+      choice.note = std::string("backend cache not written: ") + e.what();
+    }
+  }
+  choice.seconds = seconds_since(start);
+  return choice;
+}
+
+}  // namespace glint

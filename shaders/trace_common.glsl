@@ -1,0 +1,556 @@
+// The path tracer shared by the fragment-shader and the compute-shader entry points
+// (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §2): uniforms, buffers, samplers,
+// trace_path and add_samples, one copy, so that both draw the same random numbers and give the
+// same image. Included after the entry point's #version line and the `#define GLINT_NO_...`
+// lines that renderer/shader_features.cpp inserts for what the scene lacks (none defined is
+// the generic program).
+// Accumulation texel: rgb = mean of the finite samples so far, a = count of samples discarded
+// (non-finite, or cut short by the BVH step cap); compensation texel: rgb = the low-order part
+// of the mean that float32 could not hold (Kahan), a unused. The exact sample count lives on
+// the CPU.
+// Next-event estimation samples emitting shapes and an environment map; with neither there is
+// nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
+#if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
+#define GLINT_NO_LIGHT_SAMPLING
+#endif
+#include "lib/common.glsl"
+#include "lib/rng.glsl"
+#include "lib/sobol.glsl"
+#include "lib/mapping.glsl"
+#include "lib/sampling.glsl"
+#include "lib/intersect.glsl"
+#include "lib/camera.glsl"
+#include "lib/bsdf.glsl"
+#include "lib/lights.glsl"
+#include "lib/bvh.glsl"
+
+struct GpuSphere {
+  vec4 center_radius;
+  ivec4 material;  // x: material index
+};
+struct GpuQuad {
+  vec4 p0;
+  vec4 p1;
+  vec4 p2;
+  vec4 p3;
+  vec4 uv01;       // uv0.xy, uv1.xy
+  vec4 uv23;       // uv2.xy, uv3.xy
+  vec4 normal;     // xyz: geometric normal
+  ivec4 material;  // x: material index
+};
+struct GpuMaterial {
+  vec4 color;     // rgb colour, a: type
+  vec4 emission;  // rgb
+  vec4 params;    // roughness, ior, opacity
+  ivec4 layers;   // texture layers of colour, emission, roughness; -1 for none
+};
+
+layout(std430, binding = 0) readonly buffer Spheres { GpuSphere spheres[]; };
+layout(std430, binding = 1) readonly buffer Quads { GpuQuad quads[]; };
+layout(std430, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
+struct GpuLight {
+  ivec4 shape;   // x: 0 sphere, 1 quad; y: its index
+  vec4 select;   // x: pdf of picking it, y: cdf
+};
+
+layout(std430, binding = 3) readonly buffer TextureLayers { ivec4 texture_layers[]; };  // see lib/mapping.glsl
+layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
+// The BVH of renderer/bvh.h (bound only when u_use_bvh).
+layout(std430, binding = 6) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 7) readonly buffer BvhPrimitives { int bvh_primitives[]; };
+
+layout(binding = 1) uniform samplerBuffer u_texels_8bit;   // RGBA8, as stored
+layout(binding = 4) uniform samplerBuffer u_texels_float;  // RGBA32F
+layout(binding = 2) uniform sampler2D u_environment;
+
+uniform ivec2 u_resolution;
+uniform uint u_samples_before;  // samples already in the accumulation
+uniform int u_samples_per_pass;
+uniform uint u_seed;
+uniform int u_max_bounces;
+uniform int u_sphere_count;
+uniform int u_quad_count;
+// Closest hits by BVH traversal instead of the loop over every shape (the renderer decides from
+// the scene); a traversal visits at most u_bvh_max_steps nodes (renderer/loop_budget.h).
+// Specialised programs compile only one of the two (GLINT_NO_BVH, GLINT_NO_LOOP).
+uniform bool u_use_bvh;
+uniform int u_bvh_max_steps;
+uniform vec3 u_cam_origin;
+uniform vec3 u_cam_right;
+uniform vec3 u_cam_up;
+uniform vec3 u_cam_forward;
+uniform float u_cam_tan_half_vfov;
+uniform float u_cam_aspect;
+uniform float u_cam_aperture;
+uniform float u_cam_focus;
+uniform vec3 u_env_color;  // colour * intensity, or intensity alone when textured
+uniform bool u_env_textured;
+uniform float u_env_rotation;
+// Next-event estimation: u_light_count emitting shapes, picked with probability
+// (1 - u_env_select) times their power share; the environment map with u_env_select.
+uniform int u_light_count;
+uniform float u_env_select;
+uniform bool u_russian_roulette;
+uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
+// Owen-scrambled Sobol points instead of independent PCG numbers; a constant in programs for
+// one sampler (renderer/shader_features.h), so that the other one's code is left out.
+#if defined(GLINT_NO_PCG_SAMPLER)
+const bool u_sobol = true;
+#elif defined(GLINT_NO_SOBOL_SAMPLER)
+const bool u_sobol = false;
+#else
+uniform bool u_sobol;
+#endif
+
+// The sample's random numbers. PCG: one hashed stream per (pixel, sample, seed), read in
+// order. Sobol: the sample's point in a given dimension of the pixel's scrambled sequence (1-D
+// and 2-D dimensions are scrambled independently, sobol.glsl). Dimensions are laid out by
+// purpose so that every sample uses the same one for the same decision (a dimension shared by
+// different decisions in different samples loses its stratification): 0 and 1 the pixel and
+// lens positions (2-D; the pixel's shares a 4-D point with the first light point, g_primary),
+// then DIMENSIONS_PER_BOUNCE per bounce (light_dimension and so on).
+// Decisions that are taken only sometimes (coverage, roulette) use the PCG stream.
+uint g_rng;
+uint g_sample_index;
+uint g_pixel_seed;
+// Sobol: one 4-D point (sobol_sample_4d) for the two first decisions that interact, the light
+// point at the first vertex (xy: Sobol dimensions 0 and 1, a (0,2)-sequence) and the position
+// in the pixel (zw: dimensions 2 and 3, a (0,4,2)-net at 16 samples and t <= 2 for every
+// power-of-two prefix up to 256), so that the light's visibility and distance, which change
+// across the pixel, are integrated over a 4-D net (Burley 2020); the other decisions are
+// padded (their own shuffled and scrambled pairs).
+vec4 g_primary;
+float rand() {
+  g_rng = rng_advance(g_rng);
+  return rng_to_unit_float(g_rng);
+}
+const uint DIMENSIONS_PER_BOUNCE = 2u;
+uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
+uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
+float sample_1d(uint dimension) {
+  if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, dimension);
+  return rand();
+}
+vec2 sample_2d(uint dimension) {
+  if (u_sobol) {
+    if (dimension == 0u) return g_primary.zw;
+    if (dimension == light_dimension(0)) return g_primary.xy;
+    return sobol_sample_2d(g_sample_index, g_pixel_seed, dimension);
+  }
+  float a = rand();
+  return vec2(a, rand());
+}
+
+#if !defined(GLINT_NO_TEXTURES)
+vec4 fetch_texel(ivec4 layer, int x, int y) {
+  int i = texel_index(layer, x, y);
+  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, i);
+  vec4 t = texelFetch(u_texels_8bit, i);
+  if (layer.w == TEXELS_8BIT_SRGB) t.rgb = vec3(srgb_decode(t.r), srgb_decode(t.g), srgb_decode(t.b));
+  return t;
+}
+#endif
+
+vec4 texture_lookup(int layer, vec2 uv) {
+#if defined(GLINT_NO_TEXTURES)
+  return vec4(1.0);  // no used material has a texture: every layer is -1
+#else
+  if (layer < 0) return vec4(1.0);
+  ivec4 l = texture_layers[layer];
+  BilinearTaps taps = bilinear_taps(uv, l.xy);
+  vec4 a = fetch_texel(l, taps.texels.x, taps.texels.y);
+  vec4 b = fetch_texel(l, taps.texels.z, taps.texels.y);
+  vec4 c = fetch_texel(l, taps.texels.x, taps.texels.w);
+  vec4 d = fetch_texel(l, taps.texels.z, taps.texels.w);
+  return mix(mix(a, b, taps.weight.x), mix(c, d, taps.weight.x), taps.weight.y);
+#endif
+}
+
+vec3 environment(vec3 d) {
+#if !defined(GLINT_NO_ENV_TEXTURE)
+  if (u_env_textured) return u_env_color * texture(u_environment, environment_uv(d, u_env_rotation)).rgb;
+#endif
+  return u_env_color;
+}
+
+// Importance sampling of the environment map: the tables of
+// renderer/environment_distribution.h, read by lib/environment_sampling.glsl.
+layout(std430, binding = 5) readonly buffer EnvDistribution { float env_cdf[]; };
+uniform ivec2 u_env_distribution_size;
+ivec2 env_distribution_size() { return u_env_distribution_size; }
+float env_marginal_cdf(int i) { return env_cdf[i]; }
+float env_conditional_cdf(int row, int i) {
+  return env_cdf[u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i];
+}
+#include "lib/environment_sampling.glsl"
+
+struct SceneHit {
+  float t;
+  vec3 position;  // on the surface to a few ulps of error_scale (not o + t d)
+  float error_scale;  // coordinate magnitude of the shape (see surface_offset_distance)
+  vec3 normal;  // geometric, unit, not yet flipped
+  vec2 uv;
+  int material;
+  int light;  // index into lights[] when the shape emits, else -1
+};
+
+// The scene as shaders/lib/bvh.glsl reads it.
+int scene_sphere_count() { return u_sphere_count; }
+int scene_quad_count() { return u_quad_count; }
+float scene_sphere_hit(int i, Ray ray, float tmax) {
+  vec4 s = spheres[i].center_radius;
+  return intersect_sphere(ray, s.xyz, s.w, 0.0, tmax);
+}
+float scene_quad_hit(int i, Ray ray, float tmax) {
+  GpuQuad q = quads[i];
+  return intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
+                        q.uv23.xy, q.uv23.zw, 0.0, tmax).t;
+}
+BvhNode bvh_node(int i) { return bvh_nodes[i]; }
+int bvh_primitive(int i) { return bvh_primitives[i]; }
+
+// Set when a BVH traversal of this sample stopped at its step cap: the sample is discarded
+// (counted with the non-finite ones) rather than added with a possibly wrong hit.
+bool g_incomplete;
+
+PrimitiveHit closest_primitive(Ray ray) {
+#if defined(GLINT_NO_BVH)
+  return closest_hit_loop(ray, 1e30);
+#else
+#if !defined(GLINT_NO_LOOP)
+  if (!u_use_bvh) return closest_hit_loop(ray, 1e30);
+#endif
+  PrimitiveHit h = closest_hit_bvh(ray, 1e30, u_bvh_max_steps);
+  if (!h.complete) g_incomplete = true;
+  return h;
+#endif
+}
+
+SceneHit intersect_scene(Ray ray) {
+  SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1, -1);
+  PrimitiveHit closest = closest_primitive(ray);
+  if (closest.ref < 0) return hit;
+  hit.t = closest.t;
+#if !defined(GLINT_NO_QUADS)
+#if !defined(GLINT_NO_SPHERES)
+  if (closest.ref >= u_sphere_count)
+#endif
+  {
+    GpuQuad q = quads[closest.ref - u_sphere_count];
+    // The quad's nearest hit again, for its texture coordinates and point (the same t: the
+    // test's result does not depend on tmax beyond it).
+    QuadHit h = intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
+                               q.uv23.xy, q.uv23.zw, 0.0, 1e30);
+    hit.uv = h.uv;
+    hit.position = h.t != NO_HIT ? h.position : ray.origin + hit.t * ray.direction;
+    hit.normal = q.normal.xyz;
+    hit.error_scale = quad_error_scale(q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz);
+    hit.material = q.material.x;
+    hit.light = q.material.y;
+  }
+#endif
+#if !defined(GLINT_NO_QUADS) && !defined(GLINT_NO_SPHERES)
+  else
+#endif
+#if !defined(GLINT_NO_SPHERES)
+  {
+    GpuSphere sphere = spheres[closest.ref];
+    vec4 s = sphere.center_radius;
+    hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
+    hit.error_scale = sphere_error_scale(s.xyz, s.w);
+    hit.normal = normalize(hit.position - s.xyz);
+    hit.uv = direction_to_uv(hit.normal);
+    hit.material = sphere.material.x;
+    hit.light = sphere.material.y;
+  }
+#endif
+  return hit;
+}
+
+// Coverage pass-throughs allowed per path: a stack of cut-out surfaces deeper than this
+// is treated as opaque at the last one.
+const int MAX_PASS_THROUGH = 64;
+// Russian roulette starts after this many bounces (the first ones carry most of the light).
+const int ROULETTE_START = 3;
+
+vec3 material_emission(GpuMaterial gm, vec2 uv) {
+  return gm.emission.rgb * texture_lookup(gm.layers.y, uv).rgb;
+}
+
+SurfaceMaterial surface_material(GpuMaterial gm, vec4 color_tex, vec2 uv) {
+  return SurfaceMaterial(int(gm.color.a), gm.color.rgb * color_tex.rgb,
+                         gm.params.x * texture_lookup(gm.layers.z, uv).r, gm.params.y);
+}
+
+// What a ray passes straight through at a surface, on average: the uncovered fraction, and of
+// the covered one what smooth thin glass transmits (it does not bend rays). The path tracer
+// makes the same choices at random, so shadow rays and BSDF paths agree in expectation.
+vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float coverage, float cos_theta) {
+  vec3 t = vec3(1.0 - coverage);
+  // Most blockers are opaque: only glass needs its roughness (a texture fetch) looked up.
+  if (int(gm.color.a) != MATERIAL_TRANSPARENT) return t;
+  SurfaceMaterial m = surface_material(gm, color_tex, uv);
+  if (is_delta_material(m)) {
+    t += coverage * (1.0 - fresnel_schlick(dielectric_f0(m.ior), cos_theta)) * m.color;
+  }
+  return t;
+}
+
+// The solid-angle pdf with which next-event estimation at p picks the point y of light i.
+float light_pdf(int i, vec3 p, vec3 y) {
+  GpuLight l = lights[i];
+  float shape_pdf = 0.0;
+#if !defined(GLINT_NO_SPHERES)
+  if (l.shape.x == 0) {
+    vec4 s = spheres[l.shape.y].center_radius;
+    shape_pdf = sphere_light_pdf(p, s.xyz, s.w, y);
+  }
+#endif
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x != 0) {
+    GpuQuad q = quads[l.shape.y];
+    shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
+  }
+#endif
+  return (1.0 - u_env_select) * l.select.x * shape_pdf;
+}
+
+// The light whose cdf interval holds u (binary search: scenes may hold many emitters).
+int pick_light(float u) {
+  int lo = 0;
+  int hi = u_light_count - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (u < lights[mid].select.y) hi = mid;
+    else lo = mid + 1;
+  }
+  return lo;
+}
+
+// Radiance reaching `origin` along wi from light `target` (-1: the environment), through
+// cut-outs and smooth thin glass; 0 when anything else blocks it.
+vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
+  Ray ray = Ray(origin, wi);
+  vec3 transmittance = vec3(1.0);
+  for (int passes = 0; passes <= MAX_PASS_THROUGH; ++passes) {
+    SceneHit hit = intersect_scene(ray);
+    if (hit.material < 0) return target < 0 ? transmittance * environment(wi) : vec3(0.0);
+    GpuMaterial gm = materials[hit.material];
+    vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
+    float coverage = gm.params.z * color_tex.a;
+#if !defined(GLINT_NO_EMITTERS)
+    if (target >= 0 && hit.light == target) {
+      return transmittance * coverage * material_emission(gm, hit.uv);
+    }
+#endif
+    vec3 n = dot(hit.normal, wi) <= 0.0 ? hit.normal : -hit.normal;  // towards the ray's origin
+    transmittance *= straight_transmittance(gm, color_tex, hit.uv, coverage, dot(n, -wi));
+    if (max_component(transmittance) <= 0.0) break;
+    ray.origin = offset_surface_point(hit.position, -n, hit.error_scale);
+  }
+  return vec3(0.0);
+}
+
+// A light sample seen from `origin`: the point the shadow ray actually starts from.
+LightSample sample_light(int i, vec3 origin, vec2 u) {
+  GpuLight l = lights[i];
+#if !defined(GLINT_NO_SPHERES) || defined(GLINT_NO_QUADS)  // (with neither shape, never called)
+#if !defined(GLINT_NO_QUADS)
+  if (l.shape.x == 0)
+#endif
+  {
+    vec4 s = spheres[l.shape.y].center_radius;
+    return sample_sphere_light(origin, s.xyz, s.w, u);
+  }
+#endif
+#if !defined(GLINT_NO_QUADS)
+  GpuQuad q = quads[l.shape.y];
+  return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+#endif
+}
+
+// One light sample at a non-delta vertex, weighted against BSDF sampling (power heuristic;
+// Veach 1997, ch. 9). Returns f |cos| Li w / pdf. The light is sampled from the offset origin
+// of the shadow ray, not from p: on shapes far from the origin the offset is large (16 float
+// epsilons of 1e5 is 0.19), and a direction chosen from p but traced from the offset point
+// would miss the edges of the light it aimed at (biased). BSDF rays record the same origin
+// (last_p in trace_path), so both strategies see the light from the same point.
+vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale, int bounce) {
+  float u_pick = sample_1d(light_dimension(bounce));
+  vec2 u = sample_2d(light_dimension(bounce));
+  vec3 above = offset_surface_point(p, n, error_scale);
+  vec3 wi;
+  float pdf;
+  int target;
+  vec3 origin = above;
+#if !defined(GLINT_NO_ENV_TEXTURE)
+  if (u_pick < u_env_select) {
+    EnvironmentSample es = sample_environment(u, u_env_rotation);
+    if (!es.valid || !(es.pdf > 0.0)) return vec3(0.0);
+    wi = es.wi;
+    pdf = u_env_select * es.pdf;
+    target = -1;
+    if (dot(wi, n) <= 0.0) origin = offset_surface_point(p, -n, error_scale);
+  }
+#endif
+#if !defined(GLINT_NO_EMITTERS) && !defined(GLINT_NO_ENV_TEXTURE)
+  else
+#endif
+#if !defined(GLINT_NO_EMITTERS)
+  {
+    target = pick_light((u_pick - u_env_select) / (1.0 - u_env_select));
+    LightSample ls = sample_light(target, above, u);
+    if (m.type == MATERIAL_TRANSPARENT && ls.valid && dot(ls.wi, n) <= 0.0) {
+      // Rough thin glass also transmits: the light is below, seen from below.
+      origin = offset_surface_point(p, -n, error_scale);
+      ls = sample_light(target, origin, u);
+      if (dot(ls.wi, n) >= 0.0) return vec3(0.0);
+    }
+    if (!ls.valid) return vec3(0.0);
+    wi = ls.wi;
+    pdf = (1.0 - u_env_select) * lights[target].select.x * ls.pdf;
+  }
+#endif
+  vec3 f = eval_bsdf(m, n, wo, wi);
+  if (max_component(f) <= 0.0) return vec3(0.0);
+  vec3 li = shadow_ray(origin, wi, target);
+  if (max_component(li) <= 0.0) return vec3(0.0);
+  return f * li * (power_heuristic(pdf, pdf_bsdf(m, n, wo, wi)) / pdf);
+}
+
+vec3 trace_path(Ray ray) {
+  vec3 radiance = vec3(0.0);
+  vec3 throughput = vec3(1.0);
+  int bounces = 0;
+  int passes = 0;
+  bool light_sampling = u_light_count > 0 || u_env_select > 0.0;
+  // The last scattering vertex: where next-event estimation would have sampled the light that
+  // a BSDF-sampled ray finds, for the MIS weight. Camera rays and delta lobes get weight 1.
+  vec3 last_p = ray.origin;
+  float last_pdf = 0.0;
+  bool last_delta = true;
+  for (;;) {
+    SceneHit hit = intersect_scene(ray);
+    if (hit.material < 0) {
+      float w = 1.0;
+#if !defined(GLINT_NO_ENV_TEXTURE)  // without an environment map u_env_select is 0
+      if (!last_delta && u_env_select > 0.0) {
+        w = power_heuristic(last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
+      }
+#endif
+      radiance += throughput * environment(ray.direction) * w;
+      break;
+    }
+    GpuMaterial gm = materials[hit.material];
+    vec3 p = hit.position;
+    vec3 wo = -ray.direction;
+    vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;
+    vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
+#if !defined(GLINT_NO_COVERAGE)  // without it coverage is 1: no test, and no rand() either
+    float coverage = gm.params.z * color_tex.a;
+    if (coverage < 1.0 && passes < MAX_PASS_THROUGH && rand() >= coverage) {
+      // Not a bounce: the ray continues unchanged past the surface.
+      ray.origin = offset_surface_point(p, -n, hit.error_scale);
+      ++passes;
+      continue;
+    }
+#endif
+#if !defined(GLINT_NO_EMITTERS)
+    // Emission found by BSDF sampling, weighted against next-event estimation of the same
+    // light from last_p. Shapes that are not lights (no estimated power) keep weight 1.
+    float w = 1.0;
+    if (hit.light >= 0 && !last_delta && u_light_count > 0) {
+      w = power_heuristic(last_pdf, light_pdf(hit.light, last_p, p));
+    }
+    radiance += throughput * material_emission(gm, hit.uv) * w;
+#endif
+    if (bounces >= u_max_bounces) break;
+    SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
+    bool delta = is_delta_material(m);
+#if !defined(GLINT_NO_LIGHT_SAMPLING)
+    if (light_sampling && !delta) {
+      radiance += throughput * direct_light(m, p, n, wo, hit.error_scale, bounces);
+    }
+#endif
+    float u_lobe = sample_1d(bsdf_dimension(bounces));
+    vec2 u = sample_2d(bsdf_dimension(bounces));
+    BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
+    if (!s.valid) break;
+    throughput *= s.weight;
+    if (max_component(throughput) <= 0.0) break;
+    // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it
+    // finds is the one next-event estimation at last_p aimed at, along the same direction.
+    ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
+    if (!(s.delta && dot(s.wi, n) < 0.0)) {
+      last_p = ray.origin;
+      last_pdf = s.pdf;
+      last_delta = s.delta;
+    }
+    ++bounces;
+    if (u_russian_roulette && bounces >= ROULETTE_START) {
+      // Survive with probability max(throughput) (at most 1); survivors carry 1/q more.
+      float q = min(1.0, max_component(throughput));
+      if (rand() >= q) break;
+      throughput /= q;
+    }
+  }
+  return radiance;
+}
+
+// Adds u_samples_per_pass samples to the pixel's running mean: `accumulation` (rgb the mean,
+// a the discarded count) and `compensation` (what float32 could not hold of the mean) hold the
+// pixel's state before the pass (zero before the first) and receive it after. The two entry
+// points (trace.frag, trace.comp) differ only in where they read and write it.
+void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) {
+  CameraFrame cam = CameraFrame(u_cam_origin, u_cam_right, u_cam_up, u_cam_forward,
+                                u_cam_tan_half_vfov, u_cam_aspect, u_cam_aperture, u_cam_focus);
+  uint row = uint(pixel.y);
+  vec4 previous = accumulation;
+  // The pass adds the sum of the samples' deviations from the previous mean, not their sum:
+  // mean += sum(l - mean) / n. The deviations are small (exactly 0 for a constant once the mean
+  // has reached it), so their rounding is small too; summing the samples themselves and
+  // subtracting k * mean rounds both terms at the size of k * mean, and that error, divided by
+  // n each pass, drifted a constant by 1e-5 (relative) over 1000 passes of 1000 samples
+  // (hard_Accumulation.MillionSamplesOfAConstantDoNotDrift).
+  g_pixel_seed = sobol_pixel_seed(uint(pixel.x), row, u_seed);
+  vec3 deviation_sum = vec3(0.0);
+  int finite_count = 0;
+  for (int s = 0; s < u_samples_per_pass; ++s) {
+    g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
+    g_sample_index = u_samples_before + uint(s);
+    if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
+    g_incomplete = false;
+    vec2 jitter = sample_2d(0u);
+    vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);
+    vec2 lens = sample_2d(1u);
+    vec3 l = trace_path(camera_ray(cam, film, lens));
+    // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
+    float lum = luminance(l);
+    if (u_clamp > 0.0 && lum > u_clamp) l *= u_clamp / lum;
+    if (is_finite(l) && !g_incomplete) {
+      deviation_sum += l - previous.rgb;
+      ++finite_count;
+    }
+  }
+  float discarded = previous.a + float(u_samples_per_pass - finite_count);
+  float finite_total = float(u_samples_before) + float(u_samples_per_pass) - discarded;
+  // The increment sum(l - mean) / n itself is rounded when added to the mean: by up to half an
+  // ulp of the mean, and when most increments are smaller than that (a pixel of a constant
+  // background with a rare brighter sample, late in a long run) they round the same way every
+  // time. Plain float32 then drifted such a pixel by 0.1% over 10^5 one-sample passes
+  // (tests/soak, bench/SOAK.md). Kahan's compensated summation (Higham, "Accuracy and
+  // Stability of Numerical Algorithms", 2nd ed., §4.3) keeps what each addition lost in
+  // `compensation` and adds it back the next time: the represented mean is mean - compensation
+  // (so the deviations, taken from `mean`, are short by finite_count * compensation).
+  // `precise` forbids the compiler to simplify (t - mean) - y to 0.
+  precise vec3 mean = previous.rgb;
+  precise vec3 lost = compensation;
+  if (finite_total > 0.0) {
+    precise vec3 y = (deviation_sum + float(finite_count) * lost) / finite_total - lost;
+    precise vec3 t = mean + y;
+    lost = (t - mean) - y;
+    mean = t;
+  }
+  accumulation = vec4(mean, discarded);
+  compensation = lost;
+}

@@ -1,0 +1,33 @@
+# `glint render --backend` (GLINT, PROJECT, OUT a scratch folder): fragment and compute render
+# and say so, auto times once and then reads its cache (in OUT, never the user's ~/.cache), and
+# bad values exit 2 with a message naming the option.
+file(REMOVE_RECURSE "${OUT}")
+file(MAKE_DIRECTORY "${OUT}")
+
+function(expect args rc_expected pattern)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache
+                          "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2 ${args}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL ${rc_expected})
+    message(FATAL_ERROR "glint render ${args}: exit ${rc}, expected ${rc_expected}\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${pattern}")
+    message(FATAL_ERROR "glint render ${args}: output does not match '${pattern}':\n${out}${err}")
+  endif()
+endfunction()
+
+expect("--backend;fragment" 0 "trace backend: fragment \\(--backend\\)")
+expect("--backend;compute" 0 "trace backend: compute \\(--backend\\)")
+expect("--backend;compute;--work-group;16x4" 0 "wrote .*out.png \\(24x")
+if(EXISTS "${OUT}/cache/glint/backend.json")
+  message(FATAL_ERROR "a forced --backend wrote the backend cache")
+endif()
+expect("--backend;auto" 0 "trace backend: (fragment|compute) \\(auto, timed now")
+if(NOT EXISTS "${OUT}/cache/glint/backend.json")
+  message(FATAL_ERROR "--backend auto did not write ${OUT}/cache/glint/backend.json")
+endif()
+expect("" 0 "trace backend: (fragment|compute) \\(auto, cached")
+expect("--backend;vulkan" 2 "--backend expects auto, fragment or compute, got 'vulkan'")
+expect("--backend" 2 "--backend needs a value")
+expect("--work-group;64x64" 2 "--work-group expects WxH")
+message(STATUS "glint render --backend: fragment, compute, auto (timed, then cached) and bad values handled")
