@@ -14,6 +14,7 @@ const char* const kHelp =
     "  glint [PROJECT.glint] [options]                            open the editor\n"
     "  glint render PROJECT.glint -o OUT.{png,hdr,exr} [options]   headless final render\n"
     "  glint render --help                                        render options\n"
+#ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
     "  --size WxH           window size (default 1280x800)\n"
@@ -22,7 +23,12 @@ const char* const kHelp =
     "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
     "                       neither offer a crash recovery nor autosave)\n"
     "  --backend B          auto (the default: the faster on this device), fragment or\n"
-    "                       compute: the path tracer's entry point (same image)\n";
+    "                       compute: the path tracer's entry point (same image)\n"
+#else
+    "\n"
+    "This glint was built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`.\n"
+#endif
+    ;
 
 }  // namespace
 
