@@ -4,16 +4,10 @@
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 
+include(${CMAKE_CURRENT_LIST_DIR}/expect_exit.cmake)
 function(expect args rc_expected pattern)
-  execute_process(COMMAND ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache
-                          "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2 ${args}
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL ${rc_expected})
-    message(FATAL_ERROR "glint render ${args}: exit ${rc}, expected ${rc_expected}\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${pattern}")
-    message(FATAL_ERROR "glint render ${args}: output does not match '${pattern}':\n${out}${err}")
-  endif()
+  expect_exit("${rc_expected}" "${pattern}" ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache
+              "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2 ${args})
 endfunction()
 
 expect("--backend;fragment" 0 "trace backend: fragment \\(--backend\\)")

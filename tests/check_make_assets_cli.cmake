@@ -4,15 +4,9 @@
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 
+include(${CMAKE_CURRENT_LIST_DIR}/expect_exit.cmake)
 function(expect args rc_expected pattern)
-  execute_process(COMMAND "${GENERATOR}" ${args} WORKING_DIRECTORY "${OUT}"
-                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL ${rc_expected})
-    message(FATAL_ERROR "glint-make-assets ${args}: exit ${rc}, expected ${rc_expected}\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${pattern}")
-    message(FATAL_ERROR "glint-make-assets ${args}: output does not match '${pattern}':\n${out}${err}")
-  endif()
+  expect_exit("${rc_expected}" "${pattern}" ${CMAKE_COMMAND} -E chdir "${OUT}" "${GENERATOR}" ${args})
   file(GLOB made "${OUT}/*")
   if(made)
     message(FATAL_ERROR "glint-make-assets ${args} created ${made}")
