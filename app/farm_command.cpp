@@ -339,8 +339,9 @@ int farm_slurm(Options o) {
     }
   } else {
     p = o.plan;
-    p.project = fs::absolute(p.project).string();
-    p.output = fs::absolute(p.output).string();
+    p.project = fs::weakly_canonical(fs::absolute(p.project)).string();
+    p.output = fs::weakly_canonical(fs::absolute(p.output)).string();
+    if (const auto problem = file_write_problem(p.output)) throw std::runtime_error(p.output + ": " + *problem);
     std::error_code ec;
     p.glint = fs::read_symlink("/proc/self/exe", ec).string();
     if (ec) throw std::runtime_error("cannot find the glint executable (/proc/self/exe): " + ec.message());
