@@ -233,13 +233,15 @@ std::string run_command(const std::string& command) {
   return out;
 }
 
-// sbatch --parsable prints "ID" or "ID;CLUSTER".
+// sbatch --parsable prints "ID" or "ID;CLUSTER" (and perhaps warnings on other lines).
 std::string submit(const std::string& arguments) {
-  std::string out = run_command("sbatch --parsable " + arguments);
-  out = out.substr(0, out.find_first_of(";\n"));
-  if (out.empty() || out.find_first_not_of("0123456789") != std::string::npos)
-    throw std::runtime_error("sbatch printed no job id: '" + out + "'");
-  return out;
+  const std::string out = run_command("sbatch --parsable " + arguments);
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    const std::string id = line.substr(0, line.find(';'));
+    if (!id.empty() && id.find_first_not_of("0123456789") == std::string::npos) return id;
+  }
+  throw std::runtime_error("sbatch printed no job id:\n" + out);
 }
 
 enum class PartState { done, queued, running, missing, invalid };
@@ -248,14 +250,12 @@ enum class PartState { done, queued, running, missing, invalid };
 // where squeue is not installed or knows none of them.
 std::vector<std::pair<int, std::string>> queued_tasks(const Plan& p) {
   std::vector<std::pair<int, std::string>> tasks;
-  if (p.job_ids.empty()) return tasks;
-  std::string ids;
-  for (const std::string& id : p.job_ids) ids += (ids.empty() ? "" : ",") + id;
   std::string out;
-  try {
-    out = run_command("squeue -h -r -j " + ids + " -o '%i %T'");
-  } catch (const std::runtime_error&) {
-    return tasks;  // finished jobs: squeue refuses ids it has forgotten
+  for (const std::string& id : p.job_ids) {  // one by one: squeue refuses ids it has forgotten
+    try {
+      out += run_command("squeue -h -r -j " + id + " -o '%i %T'");
+    } catch (const std::runtime_error&) {
+    }
   }
   std::istringstream lines(out);
   std::string id, state;
@@ -376,6 +376,8 @@ int farm_slurm(Options o) {
   }
   const std::string job = submit(part_args);
   p.job_ids.push_back(job);
+  p.merge_job.clear();
+  write_text(dir / "farm.json", to_json(p).dump(2) + "\n");  // the parts' job, even if the next sbatch fails
   p.merge_job = submit("--dependency=afterok:" + job + " " + quoted(merge_sh.string()));
   write_text(dir / "farm.json", to_json(p).dump(2) + "\n");
   std::fprintf(stderr, "glint farm: submitted %zu part%s (job %s, array %s) and the merge (job %s) to %s; "
