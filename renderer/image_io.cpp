@@ -377,7 +377,8 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     for (int i = 0; i < header.num_custom_attributes; ++i) {
       const EXRAttribute& a = header.custom_attributes[i];
       if (std::string(a.type) != "string" || a.size < 0) continue;
-      std::string value(reinterpret_cast<const char*>(a.value), static_cast<size_t>(a.size));
+      std::string value;
+      if (a.value) value.assign(reinterpret_cast<const char*>(a.value), static_cast<size_t>(a.size));
       while (!value.empty() && value.back() == '\0') value.pop_back();
       attributes->emplace_back(a.name, value);
     }
