@@ -3,6 +3,8 @@
 #include <string>
 
 #include "editor/editor_app.h"
+#include "app/farm_command.h"
+#include "app/merge_command.h"
 #include "app/render_command.h"
 
 namespace {
@@ -14,6 +16,9 @@ const char* const kHelp =
     "  glint [PROJECT.glint] [options]                            open the editor\n"
     "  glint render PROJECT.glint -o OUT.{png,hdr,exr} [options]   headless final render\n"
     "  glint render --help                                        render options\n"
+    "  glint merge PART.exr... -o OUT.{exr,png,hdr}                join render parts\n"
+    "  glint farm slurm PROJECT.glint --spp N --parts K -o OUT     render on a Slurm cluster\n"
+    "  glint farm status -o OUT                                   the parts of a farm render\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
@@ -26,7 +31,7 @@ const char* const kHelp =
     "                       compute: the path tracer's entry point (same image)\n"
 #else
     "\n"
-    "This glint was built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`.\n"
+    "This glint was built without the editor (GLINT_BUILD_EDITOR=OFF): only the commands above.\n"
 #endif
     ;
 
@@ -35,6 +40,8 @@ const char* const kHelp =
 int main(int argc, char** argv) {
   std::string command = argc > 1 ? argv[1] : "";
   if (command == "render") return glint::run_render_command(argc - 2, argv + 2);
+  if (command == "merge") return glint::run_merge_command(argc - 2, argv + 2);
+  if (command == "farm") return glint::run_farm_command(argc - 2, argv + 2);
   if (command == "-h" || command == "--help" || command == "help") {
     std::fputs(kHelp, stdout);
     return 0;
@@ -48,7 +55,7 @@ int main(int argc, char** argv) {
   }
   return glint::run_editor(*options);
 #else
-  std::fprintf(stderr, "glint: built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render` is available\n");
+  std::fprintf(stderr, "glint: built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`, `glint merge` and `glint farm` are available\n");
   return 2;
 #endif
 }

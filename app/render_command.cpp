@@ -21,6 +21,7 @@
 #include "renderer/image.h"
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
+#include "renderer/render_part.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
@@ -30,7 +31,8 @@ namespace {
 namespace fs = std::filesystem;
 
 const char* const kUsage =
-    "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS]\n"
+    "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS |\n"
+    "                    --samples A:B]\n"
     "                    [--width W] [--height H] [--seed S] [--generic-shader]\n"
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
@@ -42,6 +44,9 @@ const char* const kUsage =
     "                     .hdr and .exr hold the linear radiance (EXR: float32 RGBA)\n"
     "  --spp N            samples per pixel (default 64)\n"
     "  --time SECONDS     render for this long instead of a fixed sample count\n"
+    "  --samples A:B      a part of a render: exactly its samples A to B-1 (those a render\n"
+    "                     of B samples takes), to an .exr whose header names the render;\n"
+    "                     `glint merge` joins parts covering 0:N into the N-sample render\n"
     "  --width W          image width (default: the project's film; with only one of\n"
     "  --height H         width or height given, the other keeps the film's aspect)\n"
     "  --seed S           sample sequence (default: the project's render.seed)\n"
@@ -91,6 +96,7 @@ struct Options {
   std::string output;
   std::optional<long> spp;
   std::optional<double> seconds;
+  std::optional<SampleRange> samples;  // --samples A:B: a render part
   std::optional<long> width, height, seed;
   std::string reference;  // with `log`: write a convergence log against this image
   std::string log;
@@ -133,6 +139,11 @@ Options parse(int argc, char** argv) {
     if (a == "-o" || a == "--output") o.output = value();
     else if (a == "--spp") o.spp = parse_integer(a, value(), 1, 1L << 30);
     else if (a == "--time") o.seconds = parse_positive(a, value(), "number of seconds");
+    else if (a == "--samples") {
+      std::string v = value();
+      o.samples = parse_sample_range(v);
+      if (!o.samples) throw UsageError{"--samples expects A:B with 0 <= A < B <= 4294967296, got '" + v + "'"};
+    }
     else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
     else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
@@ -169,7 +180,14 @@ Options parse(int argc, char** argv) {
   }
   if (o.project.empty()) throw UsageError{"no project file given"};
   if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
-  if (o.spp && o.seconds) throw UsageError{"give --spp or --time, not both"};
+  if (int(o.spp.has_value()) + int(o.seconds.has_value()) + int(o.samples.has_value()) > 1)
+    throw UsageError{"give one of --spp, --time and --samples"};
+  if (o.samples) {
+    o.spp = o.samples->count();
+    o.estimator.first_sample = static_cast<uint32_t>(o.samples->first);
+    if (std::filesystem::path(o.output).extension() != ".exr")
+      throw UsageError{"--samples writes a render part: the output '" + o.output + "' must be an .exr"};
+  }
   if (!o.log.empty() && o.reference.empty())
     throw UsageError{"--log needs --reference REF.exr (the image the error is measured against)"};
   if (!o.reference.empty() && o.log.empty())
@@ -413,7 +431,8 @@ int run_render_command(int argc, char** argv) {
                    defines.empty() ? "" : ": ", defines.c_str());
     }
 
-    save_render(renderer, o.output);
+    if (o.samples) save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
+    else save_render(renderer, o.output);
     if (double discarded = nonfinite_count(renderer.read_accumulation()); discarded > 0)
       std::fprintf(stderr, "warning: %.0f samples were discarded (non-finite, or a BVH traversal past its step cap)\n",
                    discarded);

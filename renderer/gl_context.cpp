@@ -1,10 +1,14 @@
 #include "renderer/gl_context.h"
 
+#include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
+
+#include "renderer/egl_device_order.h"
 
 namespace glint {
 namespace {
@@ -59,6 +63,15 @@ EGLContext make_context(EGLDisplay display, std::string& why) {
   return context;
 }
 
+// The CUDA device number of an NVIDIA EGL device (EGL_NV_device_cuda), nullopt for others.
+std::optional<int> cuda_device_of(EGLDeviceEXT device) {
+  const char* extensions = eglQueryDeviceStringEXT(device, EGL_EXTENSIONS);
+  if (!extensions || std::string(extensions).find("EGL_NV_device_cuda") == std::string::npos) return std::nullopt;
+  EGLAttrib id = -1;
+  if (!eglQueryDeviceAttribEXT(device, EGL_CUDA_DEVICE_NV, &id) || id < 0) return std::nullopt;
+  return static_cast<int>(id);
+}
+
 }  // namespace
 
 std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create() {
@@ -84,9 +97,16 @@ std::unique_ptr<HeadlessGLContext> HeadlessGLContext::create() {
     eglQueryDevicesEXT(0, nullptr, &n);
     std::vector<EGLDeviceEXT> devices(static_cast<size_t>(n));
     if (n > 0) eglQueryDevicesEXT(n, devices.data(), &n);
-    for (EGLint i = 0; i < n; ++i)
+    // The GPU a scheduler gave this process first (egl_device_order.h).
+    std::vector<std::optional<int>> cuda_ids(devices.size());
+    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_query"))
+      for (size_t i = 0; i < devices.size(); ++i) cuda_ids[i] = cuda_device_of(devices[i]);
+    const char* visible = std::getenv("CUDA_VISIBLE_DEVICES");
+    const EglDeviceOrder order =
+        egl_device_order(visible ? std::optional<std::string>(visible) : std::nullopt, cuda_ids);
+    for (int i : order.devices)
       if (try_display(eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr),
-                      "EGL device " + std::to_string(i)))
+                      "EGL device " + std::to_string(i) + (order.note.empty() ? "" : " (" + order.note + ")")))
         return result;
     if (n == 0) errors += "  EGL device platform: no devices\n";
   } else {

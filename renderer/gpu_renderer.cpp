@@ -423,6 +423,7 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.clamp = options_.clamp;
   u.sobol = options_.sampler == SamplerKind::sobol ? 1 : 0;
   u.seed = static_cast<unsigned>(scene.render.seed);
+  u.first_sample = options_.first_sample;
   float aspect = height_ > 0 ? static_cast<float>(width_) / static_cast<float>(height_) : 1.0f;
   gpu::CameraFrame cam = make_camera_frame(scene.camera, aspect);
   u.cam_origin = glm::vec3(glm::dvec3(scene.camera.position) - origin_);
@@ -449,6 +450,7 @@ void GpuRenderer::apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_clamp", u.clamp);
   p.set("u_sobol", u.sobol);
   p.set("u_seed", u.seed);
+  p.set("u_first_sample", u.first_sample);
   p.set("u_sphere_count", u.sphere_count);
   p.set("u_quad_count", u.quad_count);
   p.set("u_use_bvh", u.use_bvh);

@@ -177,6 +177,7 @@ class GpuRenderer {
     float clamp = 0;
     int sobol = 0;
     unsigned seed = 0;
+    unsigned first_sample = 0;
     int sphere_count = 0;
     int quad_count = 0;
     int use_bvh = 0;

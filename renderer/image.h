@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -80,6 +81,25 @@ Image to_linear_image(const TextureImage& texture, ColorEncoding encoding);
 // ImageError naming the file and the OS reason on failure (the old file is then unchanged)
 // or for an unknown extension.
 void save_image(const std::filesystem::path& path, const Image& image);
+
+// String attributes of an OpenEXR header, (name, value) in file order: a render part's
+// provenance (renderer/render_part.h).
+using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
+
+// Writes an .exr like save_image (atomically), with `attributes` in the header. With
+// `alpha_channel` (a lowercase name), the image's alpha is written as a channel of that name
+// and A is 1.
+void save_exr(const std::filesystem::path& path, const Image& image, const ExrAttributes& attributes,
+              const std::string& alpha_channel = "");
+
+// Reads an .exr and its string attributes; with `alpha_channel`, alpha is that channel (a file
+// without it is refused). Throws ImageError naming the file.
+struct ExrWithAttributes {
+  Image image;
+  ExrAttributes attributes;
+};
+ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
+                                           const std::string& alpha_channel = "");
 
 float srgb_to_linear(float c);
 float linear_to_srgb(float c);

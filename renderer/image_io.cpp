@@ -366,10 +366,23 @@ void parse_exr_header(const std::filesystem::path& path, const std::vector<unsig
                    static_cast<int>(std::clamp<long long>(h, -1, kMaxDimension + 1)));
 }
 
-Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+// `alpha_channel` (when given) names the channel read as alpha instead of A, and is required;
+// `attributes` (when given) receives the header's string attributes.
+Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+               const std::string& alpha_channel = "", ExrAttributes* attributes = nullptr) {
   ExrFile exr;
   parse_exr_header(path, bytes, exr);
   EXRHeader& header = exr.header;
+  if (attributes) {
+    for (int i = 0; i < header.num_custom_attributes; ++i) {
+      const EXRAttribute& a = header.custom_attributes[i];
+      if (std::string(a.type) != "string" || a.size < 0) continue;
+      std::string value;
+      if (a.value) value.assign(reinterpret_cast<const char*>(a.value), static_cast<size_t>(a.size));
+      while (!value.empty() && value.back() == '\0') value.pop_back();
+      attributes->emplace_back(a.name, value);
+    }
+  }
   int index[4] = {-1, -1, -1, -1};  // R, G, B, A
   int luminance = -1;
   for (int c = 0; c < header.num_channels; ++c) {
@@ -380,7 +393,7 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     if (name == "R") index[0] = c;
     if (name == "G") index[1] = c;
     if (name == "B") index[2] = c;
-    if (name == "A") index[3] = c;
+    if (name == (alpha_channel.empty() ? "A" : alpha_channel)) index[3] = c;
     if (name == "Y") luminance = c;
     // Everything is read as float; UINT channels cannot be converted by tinyexr.
     if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
@@ -388,6 +401,7 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     else if (header.pixel_types[c] == TINYEXR_PIXELTYPE_UINT)
       fail(path, "integer OpenEXR channel '" + name + "' is not supported");
   }
+  if (!alpha_channel.empty() && index[3] < 0) fail(path, "OpenEXR file has no '" + alpha_channel + "' channel");
   // A single channel of any name, or Y, is grey.
   if (header.num_channels == 1 && luminance < 0) luminance = 0;
   if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
@@ -492,25 +506,44 @@ std::vector<unsigned char> encode_hdr(const std::filesystem::path& path, const I
 }
 
 // RGBA float32 as tinyexr's SaveEXR writes it (the same bytes): channels in A, B, G, R order
-// as most viewers expect, ZIP compressed unless the image is smaller than 16x16.
-std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
+// as most viewers expect, ZIP compressed unless the image is smaller than 16x16. With
+// `alpha_channel`, the image's alpha goes to a fifth channel of that name (after R in the
+// sorted channel list OpenEXR requires, so a lowercase name) and A is 1; `attributes` are
+// written as string attributes.
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image,
+                                      const ExrAttributes& attributes = {},
+                                      const std::string& alpha_channel = "") {
   const size_t count = static_cast<size_t>(image.width) * image.height;
-  std::vector<float> planes[4];  // A, B, G, R
-  for (int c = 0; c < 4; ++c) {
+  const int n = alpha_channel.empty() ? 4 : 5;
+  std::vector<float> planes[5];  // A, B, G, R, alpha_channel
+  for (int c = 0; c < n; ++c) {
     planes[c].resize(count);
-    for (size_t i = 0; i < count; ++i) planes[c][i] = image.pixels[i * 4 + (3 - c)];
+    const int source = c == 4 ? 3 : 3 - c;
+    for (size_t i = 0; i < count; ++i)
+      planes[c][i] = c == 0 && n == 5 ? 1.0f : image.pixels[i * 4 + source];
   }
-  unsigned char* pointers[4];
-  EXRChannelInfo channels[4] = {};
-  int pixel_types[4], requested_types[4];
-  for (int c = 0; c < 4; ++c) {
+  unsigned char* pointers[5];
+  EXRChannelInfo channels[5] = {};
+  int pixel_types[5], requested_types[5];
+  for (int c = 0; c < n; ++c) {
     pointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
-    channels[c].name[0] = "ABGR"[c];
+    if (c < 4) channels[c].name[0] = "ABGR"[c];
+    else std::snprintf(channels[c].name, sizeof channels[c].name, "%s", alpha_channel.c_str());
     pixel_types[c] = requested_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+  }
+  if (attributes.size() > TINYEXR_MAX_CUSTOM_ATTRIBUTES) fail(path, "too many OpenEXR attributes");
+  std::vector<EXRAttribute> custom(attributes.size());
+  for (size_t i = 0; i < attributes.size(); ++i) {
+    const auto& [name, value] = attributes[i];
+    if (name.size() >= sizeof custom[i].name) fail(path, "OpenEXR attribute name too long: " + name);
+    std::snprintf(custom[i].name, sizeof custom[i].name, "%s", name.c_str());
+    std::snprintf(custom[i].type, sizeof custom[i].type, "string");
+    custom[i].value = reinterpret_cast<unsigned char*>(const_cast<char*>(value.data()));
+    custom[i].size = static_cast<int>(value.size());
   }
   EXRImage exr_image;
   InitEXRImage(&exr_image);
-  exr_image.num_channels = 4;
+  exr_image.num_channels = n;
   exr_image.images = pointers;
   exr_image.width = image.width;
   exr_image.height = image.height;
@@ -518,8 +551,10 @@ std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const I
   InitEXRHeader(&header);
   header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
                                                                    : TINYEXR_COMPRESSIONTYPE_ZIP;
-  header.num_channels = 4;
+  header.num_channels = n;
   header.channels = channels;
+  header.num_custom_attributes = static_cast<int>(custom.size());
+  header.custom_attributes = custom.empty() ? nullptr : custom.data();
   header.pixel_types = pixel_types;
   header.requested_pixel_types = requested_types;
   unsigned char* memory = nullptr;
@@ -653,6 +688,29 @@ void save_image(const std::filesystem::path& path, const Image& image) {
   const std::vector<unsigned char> file = ext == ".png"   ? encode_png(path, image)
                                           : ext == ".hdr" ? encode_hdr(path, image)
                                                           : encode_exr(path, image);
+  try {
+    write_file_atomically(path, file.data(), file.size());
+  } catch (const FileWriteError& e) {
+    fail(path, e.problem);
+  }
+}
+
+ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
+                                           const std::string& alpha_channel) {
+  const std::vector<unsigned char> bytes = read_image_file(path);
+  if (check_before_decoding(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
+  ExrWithAttributes result;
+  result.image = load_exr(path, bytes, alpha_channel, &result.attributes);
+  return result;
+}
+
+void save_exr(const std::filesystem::path& path, const Image& image, const ExrAttributes& attributes,
+              const std::string& alpha_channel) {
+  if (lower_extension(path) != ".exr") fail(path, "an image with attributes must be an .exr file");
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
+    fail(path, "cannot save an empty or inconsistent image");
+  const std::vector<unsigned char> file = encode_exr(path, image, attributes, alpha_channel);
   try {
     write_file_atomically(path, file.data(), file.size());
   } catch (const FileWriteError& e) {

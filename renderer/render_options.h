@@ -6,6 +6,8 @@
 // technique and users can trade bias for noise.
 #pragma once
 
+#include <cstdint>
+
 namespace glint {
 
 enum class SamplerKind { pcg, sobol };
@@ -21,6 +23,11 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::sobol;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
   Accel accel = Accel::automatic;
+  // Where in the render's sample sequence this render starts: a render of n samples takes
+  // samples first_sample .. first_sample+n-1, the very samples a render of first_sample+n
+  // samples takes there (for every sampler). A sample range A:B (`glint render --samples`)
+  // is first_sample = A and B-A samples; merging ranges 0..N gives the N-sample render.
+  uint32_t first_sample = 0;
   bool operator==(const RenderOptions&) const = default;
 };
 

@@ -10,6 +10,7 @@ packages=(
   libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libegl1
   xvfb xauth
   clang   # libFuzzer targets and the sanitizer preset (scripts/fuzz.sh, CMakePresets.json)
+  slurmctld slurmd slurm-client munge   # the farm test's one-node cluster (tests/farm)
 )
 
 missing=()

@@ -65,6 +65,7 @@ layout(binding = 2) uniform sampler2D u_environment;
 
 uniform ivec2 u_resolution;
 uniform uint u_samples_before;  // samples already in the accumulation
+uniform uint u_first_sample;    // the sequence index of the accumulation's first sample (RenderOptions)
 uniform int u_samples_per_pass;
 uniform uint u_seed;
 uniform int u_max_bounces;
@@ -516,8 +517,8 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) 
   vec3 deviation_sum = vec3(0.0);
   int finite_count = 0;
   for (int s = 0; s < u_samples_per_pass; ++s) {
-    g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
-    g_sample_index = u_samples_before + uint(s);
+    g_sample_index = u_first_sample + u_samples_before + uint(s);
+    g_rng = rng_seed(uint(pixel.x), row, g_sample_index, u_seed);
     if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
     g_incomplete = false;
     vec2 jitter = sample_2d(0u);

@@ -1,0 +1,247 @@
+#include "renderer/render_part.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <numeric>
+
+#include "renderer/gpu_renderer.h"
+#include "renderer/scene_digest.h"
+#include "renderer/shader_lib.h"
+
+namespace glint {
+namespace {
+
+// The OpenEXR header fields of a part (string attributes) and the channel of its discarded
+// counts (alpha of the accumulation, see RenderPart).
+constexpr const char* kDigest = "glint.digest";
+constexpr const char* kWidth = "glint.width";
+constexpr const char* kHeight = "glint.height";
+constexpr const char* kSeed = "glint.seed";
+constexpr const char* kSampler = "glint.sampler";
+constexpr const char* kSamples = "glint.samples";
+constexpr const char* kExposure = "glint.exposure";
+constexpr const char* kTonemap = "glint.tonemap";
+constexpr const char* kDiscardedChannel = "glint.discarded";
+
+constexpr int64_t kMaxSample = int64_t(1) << 32;  // the shader's sample index is a uint
+
+std::string hex64(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016" PRIx64, v);
+  return text;
+}
+
+const char* sampler_name(SamplerKind s) { return s == SamplerKind::sobol ? "sobol" : "pcg"; }
+
+ExrAttributes attributes_of(const PartInfo& p) {
+  char exposure[32];
+  std::snprintf(exposure, sizeof exposure, "%.9g", p.display.exposure);
+  return {{kDigest, hex64(p.digest)},
+          {kWidth, std::to_string(p.width)},
+          {kHeight, std::to_string(p.height)},
+          {kSeed, std::to_string(p.seed)},
+          {kSampler, sampler_name(p.sampler)},
+          {kSamples, format_sample_range(p.range)},
+          {kExposure, exposure},
+          {kTonemap, p.display.tonemap == Tonemap::filmic ? "filmic" : "linear"}};
+}
+
+// An unsigned integer field of at most `max`.
+uint64_t parse_unsigned(const std::filesystem::path& file, const char* field, const std::string& text,
+                        uint64_t max, int base = 10) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, base);
+  if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0 || v > max)
+    throw PartError(file.string() + ": header field " + field + " is not valid ('" + text + "')");
+  return v;
+}
+
+PartInfo info_from(const std::filesystem::path& file, const ExrAttributes& attributes) {
+  std::map<std::string, std::string> fields(attributes.begin(), attributes.end());
+  auto field = [&](const char* name) -> const std::string& {
+    auto it = fields.find(name);
+    if (it == fields.end())
+      throw PartError(file.string() + ": not a glint render part (no " + name +
+                      " in its header; render parts with glint render --samples A:B)");
+    return it->second;
+  };
+  PartInfo p;
+  p.digest = parse_unsigned(file, kDigest, field(kDigest), UINT64_MAX, 16);
+  p.width = static_cast<int>(parse_unsigned(file, kWidth, field(kWidth), 16384));
+  p.height = static_cast<int>(parse_unsigned(file, kHeight, field(kHeight), 16384));
+  p.seed = static_cast<uint32_t>(parse_unsigned(file, kSeed, field(kSeed), UINT32_MAX));
+  const std::string& sampler = field(kSampler);
+  if (sampler == "sobol") p.sampler = SamplerKind::sobol;
+  else if (sampler == "pcg") p.sampler = SamplerKind::pcg;
+  else throw PartError(file.string() + ": header field " + kSampler + " is not valid ('" + sampler + "')");
+  const auto range = parse_sample_range(field(kSamples));
+  if (!range) throw PartError(file.string() + ": header field " + kSamples + " is not valid ('" + field(kSamples) + "')");
+  p.range = *range;
+  const std::string& exposure = field(kExposure);
+  char* end = nullptr;
+  p.display.exposure = std::strtof(exposure.c_str(), &end);
+  if (exposure.empty() || *end != '\0' || !std::isfinite(p.display.exposure))
+    throw PartError(file.string() + ": header field " + kExposure + " is not valid ('" + exposure + "')");
+  const std::string& tonemap = field(kTonemap);
+  if (tonemap == "filmic") p.display.tonemap = Tonemap::filmic;
+  else if (tonemap == "linear") p.display.tonemap = Tonemap::linear;
+  else throw PartError(file.string() + ": header field " + kTonemap + " is not valid ('" + tonemap + "')");
+  return p;
+}
+
+}  // namespace
+
+std::optional<SampleRange> parse_sample_range(const std::string& text) {
+  const size_t colon = text.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  auto number = [](const std::string& s) -> std::optional<int64_t> {
+    if (s.empty() || s.size() > 12 || s.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+    return std::stoll(s);
+  };
+  const auto a = number(text.substr(0, colon)), b = number(text.substr(colon + 1));
+  if (!a || !b || *a >= *b || *b > kMaxSample) return std::nullopt;
+  return SampleRange{*a, *b};
+}
+
+std::string format_sample_range(const SampleRange& r) {
+  return std::to_string(r.first) + ":" + std::to_string(r.end);
+}
+
+uint64_t render_digest(const Scene& scene, const RenderOptions& options) {
+  Hasher h;
+  h.value(digest_scene(scene).radiance());
+  h.value(options.light_sampling ? 1 : 0);
+  h.value(options.environment_sampling ? 1 : 0);
+  h.value(options.russian_roulette ? 1 : 0);
+  h.value(options.sampler == SamplerKind::sobol ? 1 : 0);
+  h.value(options.clamp);
+  // accel is left out: loop and BVH find the same closest hits (the same image).
+  return h.result();
+}
+
+PartInfo part_info(const Scene& scene, const RenderOptions& options, int width, int height,
+                   const SampleRange& range) {
+  PartInfo p;
+  p.digest = render_digest(scene, options);
+  p.width = width;
+  p.height = height;
+  p.seed = scene.render.seed;
+  p.sampler = options.sampler;
+  p.range = range;
+  p.display = scene.display;
+  return p;
+}
+
+void save_part_image(const std::filesystem::path& file, const PartInfo& info, const Image& accumulation) {
+  save_exr(file, accumulation, attributes_of(info), kDiscardedChannel);
+}
+
+void save_render_part(GpuRenderer& renderer, const PartInfo& info, const std::filesystem::path& file) {
+  save_part_image(file, info, renderer.read_accumulation());
+}
+
+RenderPart load_render_part(const std::filesystem::path& file) {
+  ExrWithAttributes exr = load_exr_with_attributes(file, kDiscardedChannel);
+  RenderPart part{file, info_from(file, exr.attributes), std::move(exr.image)};
+  if (part.image.width != part.info.width || part.image.height != part.info.height)
+    throw PartError(file.string() + ": the image is " + std::to_string(part.image.width) + "x" +
+                    std::to_string(part.image.height) + " but its header says " +
+                    std::to_string(part.info.width) + "x" + std::to_string(part.info.height));
+  return part;
+}
+
+PartInfo read_part_header(const std::filesystem::path& file) {
+  return load_render_part(file).info;
+}
+
+std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
+                                        const std::vector<std::filesystem::path>& files,
+                                        int64_t total) {
+  std::vector<std::string> problems;
+  if (parts.empty()) return {"no parts given"};
+  const PartInfo& a = parts[0];
+  const std::string first = files[0].string();
+  for (size_t i = 1; i < parts.size(); ++i) {
+    const PartInfo& b = parts[i];
+    auto differs = [&](const std::string& what, const std::string& x, const std::string& y) {
+      problems.push_back(files[i].string() + " is not part of the render of " + first + ": its " + what +
+                         " is " + y + ", not " + x);
+    };
+    if (b.digest != a.digest) differs("digest (scene, assets and estimator options)", hex64(a.digest), hex64(b.digest));
+    if (b.width != a.width || b.height != a.height)
+      differs("size", std::to_string(a.width) + "x" + std::to_string(a.height),
+              std::to_string(b.width) + "x" + std::to_string(b.height));
+    if (b.seed != a.seed) differs("seed", std::to_string(a.seed), std::to_string(b.seed));
+    if (b.sampler != a.sampler) differs("sampler", sampler_name(a.sampler), sampler_name(b.sampler));
+    if (!(b.display == a.display)) differs("display settings (exposure, tonemap)",
+                                           attributes_of(a)[6].second + " " + attributes_of(a)[7].second,
+                                           attributes_of(b)[6].second + " " + attributes_of(b)[7].second);
+  }
+  std::vector<size_t> order(parts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+    return parts[x].range.first != parts[y].range.first ? parts[x].range.first < parts[y].range.first
+                                                        : parts[x].range.end < parts[y].range.end;
+  });
+  int64_t covered = 0;  // samples 0..covered-1 are in some part
+  size_t covering = order[0];
+  for (size_t i : order) {
+    const SampleRange& r = parts[i].range;
+    if (r.first > covered)
+      problems.push_back("samples " + format_sample_range({covered, r.first}) + " are missing (no part has them)");
+    else if (r.first < covered)
+      problems.push_back("samples " + format_sample_range({r.first, std::min(covered, r.end)}) + " overlap: in both " +
+                         files[covering].string() + " and " + files[i].string());
+    if (r.end > covered) {
+      covered = r.end;
+      covering = i;
+    }
+  }
+  if (total > 0 && covered < total)
+    problems.push_back("samples " + format_sample_range({covered, total}) + " are missing (no part has them)");
+  if (total > 0 && covered > total)
+    problems.push_back(files[covering].string() + " has samples up to " + std::to_string(covered) +
+                       ", beyond the " + std::to_string(total) + " asked for");
+  return problems;
+}
+
+Image merge_part_images(const std::vector<RenderPart>& parts) {
+  if (parts.empty()) throw std::invalid_argument("merge_part_images: no parts");
+  Image out;
+  out.width = parts[0].image.width;
+  out.height = parts[0].image.height;
+  const size_t pixels = static_cast<size_t>(out.width) * out.height;
+  out.pixels.assign(pixels * 4, 0.0f);
+  for (size_t p = 0; p < pixels; ++p) {
+    double sum[3] = {0, 0, 0}, finite = 0, discarded = 0;
+    for (const RenderPart& part : parts) {
+      const float* v = &part.image.pixels[p * 4];
+      const double n = double(part.info.range.count()) - v[3];
+      discarded += v[3];
+      if (n <= 0) continue;
+      finite += n;
+      for (int c = 0; c < 3; ++c) sum[c] += n * v[c];
+    }
+    for (int c = 0; c < 3; ++c) out.pixels[p * 4 + c] = finite > 0 ? static_cast<float>(sum[c] / finite) : 0.0f;
+    out.pixels[p * 4 + 3] = static_cast<float>(discarded);
+  }
+  return out;
+}
+
+Image tonemap_image(const Image& linear, const DisplaySettings& display) {
+  Image out = linear;
+  const int mode = display.tonemap == Tonemap::filmic ? gpu::TONEMAP_FILMIC : gpu::TONEMAP_LINEAR;
+  for (size_t i = 0; i < out.pixels.size(); i += 4) {
+    for (int c = 0; c < 3; ++c) out.pixels[i + c] = gpu::tonemap_channel(linear.pixels[i + c], display.exposure, mode);
+    out.pixels[i + 3] = 1.0f;
+  }
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,89 @@
+// A render in parts (docs/DESIGN.md §6): a sample range A:B of a render is the samples A..B-1 of
+// its sequence (RenderOptions::first_sample), saved as an OpenEXR file whose header says which
+// render it belongs to. Parts that cover 0..N without gap or overlap merge into the N-sample
+// render: the mean of their means weighted by their sample counts.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "renderer/image.h"
+#include "renderer/render_options.h"
+#include "renderer/scene.h"
+
+namespace glint {
+
+class GpuRenderer;
+
+// Samples first..end-1 of a render's sequence.
+struct SampleRange {
+  int64_t first = 0;
+  int64_t end = 0;
+  int64_t count() const { return end - first; }
+  bool operator==(const SampleRange&) const = default;
+};
+
+// "A:B" with 0 <= A < B <= 2^32; nullopt for anything else.
+std::optional<SampleRange> parse_sample_range(const std::string& text);
+std::string format_sample_range(const SampleRange& range);  // "A:B"
+
+// What a part's header records. Parts merge only if everything but `range` is equal.
+struct PartInfo {
+  uint64_t digest = 0;  // render_digest: the scene's radiance and the estimator options
+  int width = 0, height = 0;
+  uint32_t seed = 0;
+  SamplerKind sampler = SamplerKind::sobol;
+  SampleRange range;
+  DisplaySettings display;  // how a merge tonemaps (not in the digest: it never changes radiance)
+};
+
+// Everything that decides a render's samples besides size, seed, sampler and range: the scene's
+// radiance digest (renderer/scene_digest.h: values, and each asset file's size and time) and
+// the estimator options. The seed is in it too (also recorded on its own, for messages).
+uint64_t render_digest(const Scene& scene, const RenderOptions& options);
+
+PartInfo part_info(const Scene& scene, const RenderOptions& options, int width, int height,
+                   const SampleRange& range);
+
+// A part file that is not one (no glint header, a bad field): what() names the file and field.
+struct PartError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A part as read: its pixels' rgb are the mean of its finite samples, alpha the count of the
+// samples it discarded (non-finite), so that a merge weighs each pixel by its finite samples.
+struct RenderPart {
+  std::filesystem::path file;
+  PartInfo info;
+  Image image;
+};
+
+// Writes the renderer's accumulation as a part (atomically: a part killed while writing
+// leaves no file that a merge could take).
+void save_render_part(GpuRenderer& renderer, const PartInfo& info, const std::filesystem::path& file);
+void save_part_image(const std::filesystem::path& file, const PartInfo& info, const Image& accumulation);
+// Throws ImageError for an unreadable image, PartError for a missing or bad header field.
+RenderPart load_render_part(const std::filesystem::path& file);
+// The header alone, as load_render_part reads it (for `glint farm status`).
+PartInfo read_part_header(const std::filesystem::path& file);
+
+// Why a set of parts does not merge into the render of `total` samples (0: up to the largest
+// end of any part): parts of another render (naming the file and the field that differs), and
+// the missing and overlapping ranges. Empty when they merge.
+std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
+                                        const std::vector<std::filesystem::path>& files,
+                                        int64_t total = 0);
+
+// The sample-weighted mean of parts that merge_problems accepts (any order): per pixel and
+// channel, sum(finite_i * mean_i) / sum(finite_i) in double, finite_i = count_i - discarded_i;
+// alpha is the total discarded count.
+Image merge_part_images(const std::vector<RenderPart>& parts);
+
+// The display image of a linear one, exactly as the tonemap pass makes it (shaders/lib/tonemap.glsl).
+Image tonemap_image(const Image& linear, const DisplaySettings& display);
+
+}  // namespace glint
