@@ -12,6 +12,10 @@
 
 namespace glint {
 
+// Without a target error, the status line's estimate is refreshed this often (seconds): each
+// refresh is a few small draws and a read-back of at most 32x32 sums (renderer/error_estimate.h).
+constexpr double kViewportEstimateSeconds = 0.25;
+
 // The viewport stops tracing here (about a million samples per pixel: converged long before).
 constexpr int64_t kViewportMaxSamples = int64_t(1) << 20;
 
@@ -41,6 +45,8 @@ class ViewportRenderer {
   int64_t rate_samples_ = 0;
   double spp_rate_ = 0;
   double last_trace_seconds_ = 0;
+  std::chrono::steady_clock::time_point last_estimate_{};
+  double estimated_relmse_ = -1;
 };
 
 }  // namespace glint

@@ -21,6 +21,13 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::sobol;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
   Accel accel = Accel::automatic;
+  // Adaptive sampling (docs/DESIGN.md §2): pixels whose estimated error per sample is below the
+  // image's mean wait, except every adaptive_every-th pass, once they hold adaptive_min_samples.
+  // Off by default: a uniform render's every pixel gets the same samples, so sample ranges of
+  // a render add up to it exactly and tests compare images bit for bit.
+  bool adaptive = false;
+  int adaptive_min_samples = 16;
+  int adaptive_every = 8;
   bool operator==(const RenderOptions&) const = default;
 };
 
