@@ -102,10 +102,10 @@ void RenderSession::trace_pass() {
   if (sample_cap(options_.target) > 0) k = std::min(k, sample_cap(options_.target) - samples());
   // Towards an error target, relMSE falls as 1/n: a pass need not go much beyond the samples
   // that the last estimate says are missing (it would overshoot the target by the batch).
-  if (error_target(options_.target) && estimated_relmse_ > 0) {
+  if (error_target(options_.target) && estimated_relmse_ >= 0) {
     const double needed = double(samples()) * (estimated_relmse_ / options_.target.error - 1.0);
-    const int64_t missing = std::max<int64_t>(kErrorTargetMinSamples - samples(), 1);
-    k = std::min<int64_t>(k, std::max<int64_t>(missing, static_cast<int64_t>(std::ceil(needed))));
+    const int64_t to_minimum = kErrorTargetMinSamples - samples();
+    k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
   }
   if (checkpoint_ > 0) k = std::min(k, checkpoint_ - samples());
   const auto start = Clock::now();
