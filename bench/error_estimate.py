@@ -3,11 +3,13 @@
 
 Per scene, at a small size so that it runs in a few minutes on llvmpipe:
   1. a reference: Glint at --ref-spp with a seed no other render uses (as bench/run.py);
-  2. a uniform and an adaptive (`--adaptive`) render to --spp, each logged with
-     `--reference --log` (true relMSE and estimated_relmse at 1, 2, 4, ... spp, with seconds);
+  2. a uniform render to --spp and an adaptive one (`--adaptive`) for the same time, each
+     logged with `--reference --log` (true relMSE and estimated_relmse at 1, 2, 4, ... spp,
+     with seconds);
   3. a plot of the estimated and the true relMSE against time, uniform and adaptive;
   4. a table: the ratio estimated / true at the last checkpoint, the relMSE of both at equal
-     time (the uniform render's last time, the adaptive log interpolated log-log), and the
+     time (the uniform render's last time; the adaptive log, at powers of two, interpolated
+     log-log, or its last row when that comes first), and the
      slope of log relMSE against log time over the checkpoints from 16 spp (-1 is Monte Carlo's
      rate; a plateau shows as a slope near 0).
 The output is a Markdown section printed to stdout and the plot written to --plot.
@@ -85,10 +87,14 @@ def main():
         run([a.glint, "render", project, "-o", ref, "--spp", str(a.ref_spp), "--seed", str(REF_SEED),
              "--width", str(a.width)])
         logs = {}
-        for mode, extra in (("uniform", []), ("adaptive", ["--adaptive"])):
+        # Uniform to --spp; adaptive for the same time (its passes skip pixels, so it would reach
+        # --spp sooner), so that the two meet at equal time.
+        for mode in ("uniform", "adaptive"):
             out, log = os.path.join(work, f"{name}_{mode}.exr"), os.path.join(work, f"{name}_{mode}.csv")
-            run([a.glint, "render", project, "-o", out, "--spp", str(a.spp), "--seed", "1",
-                 "--width", str(a.width), "--reference", ref, "--log", log] + extra)
+            limit = (["--spp", str(a.spp)] if mode == "uniform" else
+                     ["--adaptive", "--time", f"{logs['uniform']['seconds'][-1]:.6f}"])
+            run([a.glint, "render", project, "-o", out, "--seed", "1", "--width", str(a.width),
+                 "--reference", ref, "--log", log] + limit)
             logs[mode] = read_log(log)
         ax = axes[i // cols][i % cols]
         for mode, color in (("uniform", "tab:blue"), ("adaptive", "tab:orange")):
@@ -106,7 +112,8 @@ def main():
             "scene": name,
             "ratio_u": u["estimated_relmse"][-1] / u["relmse"][-1] if u["relmse"][-1] > 0 else float("nan"),
             "ratio_a": ad["estimated_relmse"][-1] / ad["relmse"][-1] if ad["relmse"][-1] > 0 else float("nan"),
-            "t": t_end, "u": u["relmse"][-1], "a": at_time(ad["seconds"], ad["relmse"], t_end),
+            "t": t_end, "u": u["relmse"][-1],
+            "a": at_time(ad["seconds"], ad["relmse"], t_end) if ad["seconds"][-1] >= t_end else ad["relmse"][-1],
             "a_end": ad["relmse"][-1], "t_a_end": ad["seconds"][-1],
             "slope_u": slope(u["seconds"], u["relmse"], u["spp"]),
             "slope_a": slope(ad["seconds"], ad["relmse"], ad["spp"]),
@@ -119,8 +126,8 @@ def main():
     g = lambda x: "n/a" if not np.isfinite(x) else f"{x:.3g}"  # noqa: E731
     print(f"{a.width} px wide, {a.spp} spp (Sobol sampler, seed 1), reference {a.ref_spp} spp; "
           f"plot: {os.path.basename(a.plot)}\n")
-    print("| scene | estimated / true, uniform | estimated / true, adaptive | time (uniform, 256 spp) | "
-          "relMSE uniform | relMSE adaptive at that time | equal-time gain | adaptive at its end "
+    print(f"| scene | estimated / true, uniform | estimated / true, adaptive | time (uniform, {a.spp} spp) | "
+          "relMSE uniform | relMSE adaptive at that time | equal-time gain | adaptive's last row "
           "(time) | slope uniform | slope adaptive |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:

@@ -59,12 +59,12 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
     }
   }
 
-  // The error estimate: before tracing when a target may pause the accumulation, else a few
-  // times a second for the status line.
+  // The error estimate, a few times a second (for the status line and the target, which is
+  // then overshot by at most that much tracing).
   if (stats.restarted) estimated_relmse_ = -1;
   const bool targeted = request.target_error > 0;
   if (synced && renderer_.sample_count() >= 2 &&
-      (targeted || since(last_estimate_) >= kViewportEstimateSeconds)) {
+      (estimated_relmse_ < 0 || since(last_estimate_) >= kViewportEstimateSeconds)) {
     const ErrorEstimate e = renderer_.estimate_error();
     estimated_relmse_ = e.known() ? e.relmse : -1;
     last_estimate_ = std::chrono::steady_clock::now();

@@ -12,8 +12,10 @@
 
 namespace glint {
 
-// Without a target error, the status line's estimate is refreshed this often (seconds): each
-// refresh is a few small draws and a read-back of at most 32x32 sums (renderer/error_estimate.h).
+// The viewport's error estimate is refreshed this often (seconds): each refresh is a few small
+// draws and a read-back of at most 32x32 sums that waits for the GPU (renderer/error_estimate.h;
+// measured 16 ms on llvmpipe on this loaded 2-core machine, against 105 ms for one sample of
+// projects/default.glint at the viewport's 123x69).
 constexpr double kViewportEstimateSeconds = 0.25;
 
 // The viewport stops tracing here (about a million samples per pixel: converged long before).

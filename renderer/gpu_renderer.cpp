@@ -201,6 +201,8 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   if (result.accumulation_reset) {
     samples_ = 0;
     passes_ = 0;
+    threshold_samples_ = 0;
+    adaptive_threshold_ = 0;
     estimate_ = {};
     estimate_samples_ = -1;
     display_stale_ = true;
@@ -671,10 +673,15 @@ void GpuRenderer::trace(int samples) {
   collect_trace_timers(false);  // finished ones only, so the editor's list stays short
   // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
   // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
-  // Adaptive sampling compares each pixel with the image's mean error per sample: refreshed
-  // once per call (a small read-back, renderer/error_estimate.h) from the pixels' minimum on.
-  if (options_.adaptive && samples_ >= std::max(2, options_.adaptive_min_samples))
+  // Adaptive sampling compares each pixel with the image's mean error per sample, refreshed
+  // from the pixels' minimum on whenever the sample count has grown by a quarter (a small
+  // read-back that waits for the GPU, renderer/error_estimate.h: O(log n) of them per render,
+  // at sample counts that do not depend on the batches' timing).
+  if (options_.adaptive && samples_ >= std::max(2, options_.adaptive_min_samples) &&
+      samples_ * 4 >= threshold_samples_ * 5) {
     adaptive_threshold_ = static_cast<float>(estimate_error().relmse_per_sample);
+    threshold_samples_ = samples_;
+  }
   GLuint timer[2] = {0, 0};
   glCreateQueries(GL_TIMESTAMP, 2, timer);
   glQueryCounter(timer[0], GL_TIMESTAMP);

@@ -225,6 +225,7 @@ class GpuRenderer {
   int64_t samples_ = 0;
   int64_t passes_ = 0;             // draws since the reset (adaptive sampling's pass index)
   float adaptive_threshold_ = 0;   // the image's mean error per sample at the last estimate
+  int64_t threshold_samples_ = 0;  // sample_count() when adaptive_threshold_ was taken
   std::unique_ptr<ErrorEstimator> estimator_;
   ErrorEstimate estimate_;
   int64_t estimate_samples_ = -1;  // sample_count() when estimate_ was taken
