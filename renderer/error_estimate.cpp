@@ -17,6 +17,13 @@ int blocks(int n) { return (n + kBlock - 1) / kBlock; }
 ErrorEstimator::ErrorEstimator()
     : program_(std::make_unique<GlProgram>("fullscreen.vert", "error_reduce.frag")) {
   glCreateVertexArrays(1, &vao_);
+  // One estimate of a 1x1 image now: a driver that compiles at the first draw (llvmpipe) does
+  // it here, when the renderer is made, not during a render (where the soak would count it).
+  GLuint pixel = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &pixel);
+  glTextureStorage2D(pixel, 1, GL_RGBA32F, 1, 1);
+  estimate(pixel, pixel, pixel, 1, 1);
+  glDeleteTextures(1, &pixel);
 }
 
 ErrorEstimator::~ErrorEstimator() {

@@ -88,6 +88,7 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   trace_program_ = start_trace_program(options.backend, options.work_group, "");
   trace_program_->finish();
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
+  estimator_ = std::make_unique<ErrorEstimator>();
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(kBuffers, buffers_);
   llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
@@ -757,7 +758,6 @@ Image GpuRenderer::read_accumulation() const {
 
 ErrorEstimate GpuRenderer::estimate_error() {
   if (estimate_samples_ == samples_) return estimate_;
-  if (!estimator_) estimator_ = std::make_unique<ErrorEstimator>();
   estimate_ = samples_ > 0 ? estimator_->estimate(accumulation_[current_], compensation_[current_],
                                                   variance_[current_], width_, height_)
                            : ErrorEstimate{};
