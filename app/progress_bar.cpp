@@ -37,4 +37,14 @@ std::string format_time_progress(double seconds, double budget, int64_t samples,
   return bar + tail;
 }
 
+std::string format_error_estimate(double estimated_relmse, double target) {
+  if (!(estimated_relmse >= 0)) return "";
+  char text[80];
+  if (target > 0)
+    std::snprintf(text, sizeof text, "  est. relMSE %.2e (target %.2e)", estimated_relmse, target);
+  else
+    std::snprintf(text, sizeof text, "  est. relMSE %.2e", estimated_relmse);
+  return text;
+}
+
 }  // namespace glint

@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 
 const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS |\n"
-    "                    --samples A:B]\n"
+    "                    --samples A:B] [--target-error E] [--adaptive]\n"
     "                    [--width W] [--height H] [--seed S] [--generic-shader]\n"
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
@@ -47,6 +47,16 @@ const char* const kUsage =
     "  --samples A:B      a part of a render: exactly its samples A to B-1 (those a render\n"
     "                     of B samples takes), to an .exr whose header names the render;\n"
     "                     `glint merge` joins parts covering 0:N into the N-sample render\n"
+    "  --target-error E   render until the estimated relMSE of the image is at most E\n"
+    "                     (estimated from each pixel's sample variance, no reference\n"
+    "                     needed; never before 16 spp); --spp and --time are then caps,\n"
+    "                     both may be given, whichever comes first ends it (default cap:\n"
+    "                     --spp 4096). The last line on stderr names the limit that ended it\n"
+    "  --adaptive         adaptive sampling: from 16 spp on, a pixel whose estimated error\n"
+    "                     per sample is below the image's mean skips passes (but takes every\n"
+    "                     8th), so samples go where the noise is; --spp is then the most any\n"
+    "                     pixel takes. Off by default: without it every pixel gets the same\n"
+    "                     samples and a render is reproduced bit for bit\n"
     "  --width W          image width (default: the project's film; with only one of\n"
     "  --height H         width or height given, the other keeps the film's aspect)\n"
     "  --seed S           sample sequence (default: the project's render.seed)\n"
@@ -57,12 +67,15 @@ const char* const kUsage =
     "  --log OUT.csv      convergence log against --reference: one row at 1, 2, 4, 8, ...\n"
     "                     samples per pixel and at the final --spp if that is not a power of\n"
     "                     two (with --time: powers of two only). Columns:\n"
-    "                     spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite\n"
+    "                     spp,seconds,gpu_seconds,relmse,estimated_relmse,relmse_trimmed,\n"
+    "                     mape,mean_bias,nonfinite\n"
     "                     seconds: time spent rendering so far; the clock (and --time) is\n"
     "                       paused while a checkpoint reads the image back and computes errors\n"
     "                     gpu_seconds: sum of GL timer queries around the trace passes\n"
     "                     relmse: mean of (x-r)^2/(r^2+0.01) over pixels and channels;\n"
     "                       relmse_trimmed drops the worst 0.1% of pixels first\n"
+    "                     estimated_relmse: the same error estimated without the reference,\n"
+    "                       from the pixels' sample variance (as --target-error uses it)\n"
     "                     mape: mean of |x-r|/(|r|+0.01); mean_bias: relative error of the\n"
     "                       mean luminance; nonfinite: non-finite samples discarded\n"
     "Estimator (not saved in projects; the defaults are unbiased):\n"
@@ -91,12 +104,16 @@ const char* const kUsage =
     "be written), 2 bad arguments (also: a --width/--height beyond the film limits, a\n"
     "--log or -o that would overwrite the project, the reference or each other).\n";
 
+// The sample cap of --target-error when neither --spp nor --time is given.
+constexpr int64_t kTargetErrorDefaultCap = 4096;
+
 struct Options {
   std::string project;
   std::string output;
   std::optional<long> spp;
   std::optional<double> seconds;
   std::optional<SampleRange> samples;  // --samples A:B: a render part
+  std::optional<double> target_error;
   std::optional<long> width, height, seed;
   std::string reference;  // with `log`: write a convergence log against this image
   std::string log;
@@ -144,6 +161,8 @@ Options parse(int argc, char** argv) {
       o.samples = parse_sample_range(v);
       if (!o.samples) throw UsageError{"--samples expects A:B with 0 <= A < B <= 4294967296, got '" + v + "'"};
     }
+    else if (a == "--target-error") o.target_error = parse_positive(a, value(), "relMSE");
+    else if (a == "--adaptive") o.estimator.adaptive = true;
     else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
     else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
     else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
@@ -180,8 +199,10 @@ Options parse(int argc, char** argv) {
   }
   if (o.project.empty()) throw UsageError{"no project file given"};
   if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
-  if (int(o.spp.has_value()) + int(o.seconds.has_value()) + int(o.samples.has_value()) > 1)
-    throw UsageError{"give one of --spp, --time and --samples"};
+  if (o.samples && (o.spp || o.seconds || o.target_error || o.estimator.adaptive))
+    throw UsageError{"--samples renders an exact range: it takes no --spp, --time, --target-error or --adaptive"};
+  if (o.spp && o.seconds && !o.target_error)
+    throw UsageError{"give --spp or --time, not both (both are caps only with --target-error)"};
   if (o.samples) {
     o.spp = o.samples->count();
     o.estimator.first_sample = static_cast<uint32_t>(o.samples->first);
@@ -348,7 +369,7 @@ int run_render_command(int argc, char** argv) {
     if (!o.log.empty()) {
       reference = load_reference(o.reference, width, height);
       log.emplace(o.log);
-      log->write_line("spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite");
+      log->write_line("spp,seconds,gpu_seconds,relmse,estimated_relmse,relmse_trimmed,mape,mean_bias,nonfinite");
     }
 
     auto context = HeadlessGLContext::create();
@@ -393,7 +414,16 @@ int run_render_command(int argc, char** argv) {
                    o.project.c_str());
 
     RenderSessionOptions session_options;
-    session_options.target = o.seconds ? RenderTarget{0, *o.seconds} : RenderTarget{o.spp ? *o.spp : 64, 0};
+    if (o.target_error) {
+      session_options.target.error = *o.target_error;
+      session_options.target.seconds = o.seconds.value_or(0);
+      session_options.target.samples = o.spp ? *o.spp : o.seconds ? 0 : kTargetErrorDefaultCap;
+    } else {
+      session_options.target = o.seconds ? RenderTarget{0, *o.seconds} : RenderTarget{o.spp ? *o.spp : 64, 0};
+    }
+    if (o.estimator.adaptive)
+      std::fprintf(stderr, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
+                   o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
     session_options.checkpoints = log.has_value();
     RenderSession session(renderer, session_options);
     const bool interactive = isatty(STDERR_FILENO);
@@ -407,22 +437,33 @@ int run_render_command(int argc, char** argv) {
         double gpu = renderer.trace_gpu_seconds();
         Image accumulation = renderer.read_accumulation();
         last_metrics = compare_images(accumulation, *reference);
-        char row[256];
-        std::snprintf(row, sizeof row, "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.0f",
+        const ErrorEstimate estimate = renderer.estimate_error();
+        char row[288];
+        std::snprintf(row, sizeof row, "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.0f",
                       static_cast<long long>(s.samples()), elapsed, gpu, last_metrics.relmse,
-                      last_metrics.relmse_trimmed, last_metrics.mape, last_metrics.mean_bias,
-                      nonfinite_count(accumulation));
+                      estimate.known() ? estimate.relmse : std::nan(""), last_metrics.relmse_trimmed,
+                      last_metrics.mape, last_metrics.mean_bias, nonfinite_count(accumulation));
         log->write_line(row);
       }
       if (interactive || elapsed - last_report >= 5.0) {
         std::string line = o.seconds ? format_time_progress(elapsed, *o.seconds, s.samples())
                                      : format_progress(s.samples(), s.options().target.samples, elapsed, "spp");
+        // The estimated error beside the bar: the session's own when it targets one, else a
+        // fresh one (a small read-back; at most once a second when not on a terminal).
+        const double estimated = o.target_error ? s.estimated_relmse() : renderer.estimate_error().relmse;
+        line += format_error_estimate(estimated, o.target_error.value_or(0));
         std::fprintf(stderr, interactive ? "\r%s\033[K" : "%s\n", line.c_str());
         last_report = elapsed;
       }
     });
     double total = session.seconds();
     if (interactive) std::fputc('\n', stderr);
+    if (o.target_error) {
+      const StopReason why = session.stop_reason();
+      std::fprintf(stderr, "glint: stopped by the %s: estimated relMSE %.4g (target %g) at %lld spp, %.2f s\n",
+                   stop_reason_text(why), session.estimated_relmse(), *o.target_error,
+                   static_cast<long long>(session.samples()), total);
+    }
     {
       std::string defines = renderer.last_pass_defines();
       for (char& c : defines) c = c == '\n' ? ' ' : c;

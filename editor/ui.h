@@ -45,6 +45,8 @@ struct ViewportView {
   ViewportResolution resolution = ViewportResolution::automatic;
   // How the viewport and exports sample (not saved in the project; see render_options.h).
   RenderOptions estimator;
+  // > 0: the viewport pauses its accumulation at this estimated relMSE (not saved).
+  double target_error = 0;
   // This frame's render once the viewport has rendered (before: the last frame's).
   ViewportFrame frame;
 };

@@ -18,6 +18,11 @@ std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
   int n = std::snprintf(text, sizeof text, "%lld spp   %.1f spp/s   %.1f ms/frame   %dx%d",
                         static_cast<long long>(s.spp), s.spp_per_second, s.ms_per_frame, s.trace_width,
                         s.trace_height);
+  // Without a reference: from the pixels' sample variance (renderer/error_estimate.h).
+  if (s.estimated_relmse >= 0)
+    n += std::snprintf(text + n, sizeof text - n, "   est. relMSE %.2e", s.estimated_relmse);
+  if (s.target_reached)
+    n += std::snprintf(text + n, sizeof text - n, " (target %.2e reached: paused)", state.viewport.target_error);
   float full_w = state.viewport.size.x * state.viewport.framebuffer_scale;
   if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
     n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));

@@ -193,6 +193,11 @@ void sampling_properties(EditorState& state) {
   bool clamp = o.clamp > 0;
   if (ImGui::Checkbox("Clamp fireflies (biased)", &clamp)) o.clamp = clamp ? 10.0f : 0.0f;
   if (clamp) ImGui::DragFloat("Clamp luminance", &o.clamp, 0.1f, 0.01f, 1e6f, "%.2f", kClamp);
+  ImGui::Checkbox("Adaptive sampling", &o.adaptive);
+  // The viewport pauses at this estimated relMSE; 0: never.
+  float target = static_cast<float>(state.viewport.target_error);
+  if (ImGui::InputFloat("Target error", &target, 0, 0, "%.2e") && target >= 0)
+    state.viewport.target_error = target;
   if (clamp) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Clamping darkens bright highlights: the image no longer converges to the right answer.");

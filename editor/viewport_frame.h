@@ -18,6 +18,9 @@ struct ViewportRequest {
   RenderOptions estimator;  // how the viewport samples (not saved in the project)
   bool trace = true;        // false while an export has the device: sync and tonemap only
   int samples_per_frame = 0;  // > 0: trace exactly this many, not the frame budget's (repeatable runs)
+  // > 0: accumulation pauses once the estimated relMSE (GpuRenderer::estimate_error) is at most
+  // this, from kErrorTargetMinSamples on (renderer/render_session.h).
+  double target_error = 0;
 };
 
 struct FrameStats {
@@ -26,6 +29,8 @@ struct FrameStats {
   double ms_per_frame = 0;
   int trace_width = 0, trace_height = 0;
   bool restarted = false;  // this frame's sync reset the accumulation
+  double estimated_relmse = -1;  // the image's estimated relMSE; -1 while unknown
+  bool target_reached = false;   // paused at the request's target_error
   std::string gl_renderer;
   std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
 };

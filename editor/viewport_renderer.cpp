@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 
 #include "renderer/gl_context.h"
+#include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
 namespace glint {
@@ -58,7 +59,19 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
     }
   }
 
-  if (request.trace && synced && renderer_.sample_count() < kViewportMaxSamples) {
+  // The error estimate, a few times a second (for the status line and the target, which is
+  // then overshot by at most that much tracing).
+  if (stats.restarted) estimated_relmse_ = -1;
+  const bool targeted = request.target_error > 0;
+  if (synced && renderer_.sample_count() >= 2 &&
+      (estimated_relmse_ < 0 || since(last_estimate_) >= kViewportEstimateSeconds)) {
+    const ErrorEstimate e = renderer_.estimate_error();
+    estimated_relmse_ = e.known() ? e.relmse : -1;
+    last_estimate_ = std::chrono::steady_clock::now();
+  }
+  stats.target_reached = targeted && synced && renderer_.sample_count() >= kErrorTargetMinSamples &&
+                         estimated_relmse_ >= 0 && estimated_relmse_ <= request.target_error;
+  if (request.trace && synced && !stats.target_reached && renderer_.sample_count() < kViewportMaxSamples) {
     const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
     int k = request.samples_per_frame > 0 ? request.samples_per_frame : budget_.samples(pixels);
     k = static_cast<int>(std::min<int64_t>(k, kViewportMaxSamples - renderer_.sample_count()));
@@ -88,6 +101,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   }
   out.display_texture = tex;
   stats.spp = renderer_.sample_count();
+  stats.estimated_relmse = estimated_relmse_;
   stats.spp_per_second = spp_rate_;
   stats.ms_per_frame = ms_per_frame_;
   stats.trace_width = renderer_.width();

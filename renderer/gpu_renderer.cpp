@@ -1,6 +1,7 @@
 #include "renderer/gpu_renderer.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -11,6 +12,7 @@
 
 #include "renderer/camera_frame.h"
 #include "renderer/environment_distribution.h"
+#include "renderer/error_estimate.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
@@ -59,19 +61,25 @@ GLuint make_texture_2d(GLenum internal_format, int width, int height) {
   return t;
 }
 
-// A framebuffer drawing into `texture` (location 0) and, if given, `second` (location 1).
-GLuint make_framebuffer(GLuint texture, GLuint second = 0) {
+// A framebuffer drawing into `textures` at locations 0, 1, ...
+GLuint make_framebuffer(std::initializer_list<GLuint> textures) {
   GLuint fbo = 0;
   glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, texture, 0);
-  if (second) {
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, second, 0);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo, 2, both);
+  std::vector<GLenum> attachments;
+  for (GLuint t : textures) {
+    const GLenum a = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(attachments.size());
+    glNamedFramebufferTexture(fbo, a, t, 0);
+    attachments.push_back(a);
   }
+  glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(attachments.size()), attachments.data());
   if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("incomplete framebuffer for the render target");
   return fbo;
+}
+
+// The trace pass's four targets of one ping-pong side.
+GLuint make_trace_framebuffer(const TraceTargets& t) {
+  return make_framebuffer({t.accumulation, t.compensation, t.variance, t.variance_compensation});
 }
 
 }  // namespace
@@ -80,6 +88,7 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   trace_program_ = start_trace_program(options.backend, options.work_group, "");
   trace_program_->finish();
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
+  estimator_ = std::make_unique<ErrorEstimator>();
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(kBuffers, buffers_);
   llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
@@ -89,6 +98,7 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
 }
 
 GpuRenderer::~GpuRenderer() {
+  estimator_.reset();
   resize(0, 0);
   glDeleteBuffers(kBuffers, buffers_);
   glDeleteVertexArrays(1, &vao_);
@@ -104,9 +114,13 @@ void GpuRenderer::resize(int width, int height) {
     accumulation_fbo_[0] = accumulation_fbo_[1] = 0;
     glDeleteTextures(2, accumulation_);
     glDeleteTextures(2, compensation_);
+    glDeleteTextures(2, variance_);
+    glDeleteTextures(2, variance_compensation_);
     glDeleteFramebuffers(1, &display_fbo_);
     glDeleteTextures(1, &display_texture_);
-    accumulation_[0] = accumulation_[1] = compensation_[0] = compensation_[1] = display_texture_ = 0;
+    for (int i = 0; i < 2; ++i)
+      accumulation_[i] = compensation_[i] = variance_[i] = variance_compensation_[i] = 0;
+    display_texture_ = 0;
   }
   width_ = width;
   height_ = height;
@@ -115,12 +129,14 @@ void GpuRenderer::resize(int width, int height) {
   for (int i = 0; i < (compute ? 1 : 2); ++i) {
     accumulation_[i] = make_texture_2d(GL_RGBA32F, width, height);
     compensation_[i] = make_texture_2d(GL_RGBA32F, width, height);
-    if (!compute) accumulation_fbo_[i] = make_framebuffer(accumulation_[i], compensation_[i]);
+    variance_[i] = make_texture_2d(GL_RGBA32F, width, height);
+    variance_compensation_[i] = make_texture_2d(GL_RGBA32F, width, height);
+    if (!compute) accumulation_fbo_[i] = make_trace_framebuffer(targets(i));
   }
   display_texture_ = make_texture_2d(GL_RGBA8, width, height);
   // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
   glTextureParameteri(display_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  display_fbo_ = make_framebuffer(display_texture_);
+  display_fbo_ = make_framebuffer({display_texture_});
 }
 
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
@@ -185,13 +201,19 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   }
   if (result.accumulation_reset) {
     samples_ = 0;
+    passes_ = 0;
+    threshold_samples_ = 0;
+    adaptive_threshold_ = 0;
+    estimate_ = {};
+    estimate_samples_ = -1;
     display_stale_ = true;
     if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
     trace_timers_.clear();
     trace_gpu_seconds_ = 0;
     const float zero[4] = {0, 0, 0, 0};
-    for (GLuint t : {accumulation_[0], accumulation_[1], compensation_[0], compensation_[1]})
-      if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+    for (int i = 0; i < 2; ++i)
+      for (GLuint t : {accumulation_[i], compensation_[i], variance_[i], variance_compensation_[i]})
+        if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   }
   digests_ = d;
   synced_options_ = options_;
@@ -532,7 +554,7 @@ void GpuRenderer::prepare_specialised_program() {
 }
 
 // A job for the worker: link the variant, then draw one pixel with it in the state a trace pass
-// draws in (two RGBA32F targets; this renderer's textures on units 0-4 and buffers on 0-7, whose
+// draws in (four RGBA32F targets; this renderer's textures on units 0-6 and buffers on 0-7, whose
 // formats and sampling enter the compiled code's key), so that the driver compiles there the
 // code this renderer's first pass will look up. The names are captured now; should the renderer
 // replace a texture meanwhile, the driver compiles again at that first pass (only slower).
@@ -548,8 +570,9 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
     job->defines = defines;
   }
   const TraceUniforms uniforms = uniforms_;
-  const GLuint textures[5] = {accumulation_[current_], texel_textures_[0], environment_texture_,
-                              compensation_[current_], texel_textures_[1]};
+  const GLuint textures[7] = {accumulation_[current_], texel_textures_[0], environment_texture_,
+                              compensation_[current_], texel_textures_[1], variance_[current_],
+                              variance_compensation_[current_]};
   std::vector<GLuint> buffers(buffers_, buffers_ + kBuffers);
   job->warm_up = [uniforms, textures, buffers, compute](GlProgram& p) {
     apply_trace_uniforms(p, uniforms);
@@ -557,19 +580,20 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
     for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
-    for (GLuint i = 0; i < 5; ++i) glBindTextureUnit(i, textures[i]);
+    for (GLuint i = 0; i < 7; ++i) glBindTextureUnit(i, textures[i]);
     if (compute) {
       warm_up_compute_pass();
       return;
     }
     // Framebuffers are not shared between contexts: a 1x1 one like accumulation_fbo_, here.
-    GLuint target[2] = {make_texture_2d(GL_RGBA32F, 1, 1), make_texture_2d(GL_RGBA32F, 1, 1)};
-    GLuint fbo = make_framebuffer(target[0], target[1]);
+    GLuint target[4];
+    for (GLuint& t : target) t = make_texture_2d(GL_RGBA32F, 1, 1);
+    GLuint fbo = make_trace_framebuffer({target[0], target[1], target[2], target[3]});
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(2, target);
+    glDeleteTextures(4, target);
   };
   renderer_options_.worker->submit(job);
   return job;
@@ -601,13 +625,18 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   p.set("u_resolution", glm::ivec2(width_, height_));
   p.set("u_samples_before", static_cast<unsigned>(samples_));
   p.set("u_samples_per_pass", samples);
+  p.set("u_adaptive", options_.adaptive ? 1 : 0);
+  p.set("u_adaptive_threshold", adaptive_threshold_);
+  p.set("u_adaptive_min_samples", static_cast<unsigned>(std::max(2, options_.adaptive_min_samples)));
+  p.set("u_adaptive_every", static_cast<unsigned>(std::max(1, options_.adaptive_every)));
+  p.set("u_pass_index", static_cast<unsigned>(passes_));
   glUseProgram(p.id());
   for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(1, texel_textures_[0]);
   glBindTextureUnit(2, environment_texture_);
   glBindTextureUnit(4, texel_textures_[1]);
   if (renderer_options_.backend == TraceBackend::compute) {
-    bind_trace_images(accumulation_[0], compensation_[0]);
+    bind_trace_images(targets(0));
     return p;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[1 - current_]);
@@ -617,6 +646,8 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
   glDisable(GL_SCISSOR_TEST);
   glBindTextureUnit(0, accumulation_[current_]);
   glBindTextureUnit(3, compensation_[current_]);
+  glBindTextureUnit(5, variance_[current_]);
+  glBindTextureUnit(6, variance_compensation_[current_]);
   glBindVertexArray(vao_);
   return p;
 }
@@ -645,6 +676,15 @@ void GpuRenderer::trace(int samples) {
   collect_trace_timers(false);  // finished ones only, so the editor's list stays short
   // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
   // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
+  // Adaptive sampling compares each pixel with the image's mean error per sample, refreshed
+  // from the pixels' minimum on whenever the sample count has grown by a quarter (a small
+  // read-back that waits for the GPU, renderer/error_estimate.h: O(log n) of them per render,
+  // at sample counts that do not depend on the batches' timing).
+  if (options_.adaptive && samples_ >= std::max(2, options_.adaptive_min_samples) &&
+      samples_ * 4 >= threshold_samples_ * 5) {
+    adaptive_threshold_ = static_cast<float>(estimate_error().relmse_per_sample);
+    threshold_samples_ = samples_;
+  }
   GLuint timer[2] = {0, 0};
   glCreateQueries(GL_TIMESTAMP, 2, timer);
   glQueryCounter(timer[0], GL_TIMESTAMP);
@@ -658,6 +698,7 @@ void GpuRenderer::trace(int samples) {
       current_ = 1 - current_;
     }
     samples_ += n;
+    ++passes_;
     done += n;
   }
   glQueryCounter(timer[1], GL_TIMESTAMP);
@@ -714,6 +755,30 @@ Image GpuRenderer::read_accumulation() const {
   if (samples_ > 0)
     glGetTextureImage(accumulation_[current_], 0, GL_RGBA, GL_FLOAT,
                       static_cast<GLsizei>(image.pixels.size() * sizeof(float)), image.pixels.data());
+  return image;
+}
+
+ErrorEstimate GpuRenderer::estimate_error() {
+  if (estimate_samples_ == samples_) return estimate_;
+  estimate_ = samples_ > 0 ? estimator_->estimate(accumulation_[current_], compensation_[current_],
+                                                  variance_[current_], width_, height_)
+                           : ErrorEstimate{};
+  estimate_samples_ = samples_;
+  return estimate_;
+}
+
+Image GpuRenderer::read_variance() const {
+  Image image;
+  image.width = width_;
+  image.height = height_;
+  const size_t n = static_cast<size_t>(width_) * height_ * 4;
+  image.pixels.assign(n, 0.0f);
+  if (samples_ <= 0) return image;
+  const GLsizei bytes = static_cast<GLsizei>(n * sizeof(float));
+  glGetTextureImage(variance_[current_], 0, GL_RGBA, GL_FLOAT, bytes, image.pixels.data());
+  std::vector<float> compensation(n);
+  glGetTextureImage(compensation_[current_], 0, GL_RGBA, GL_FLOAT, bytes, compensation.data());
+  for (size_t i = 3; i < n; i += 4) image.pixels[i] = compensation[i];
   return image;
 }
 

@@ -6,7 +6,9 @@
 // fragment shader into ping-pong RGBA32F buffers or with the compute shader in place
 // (renderer/trace_backend.h); update_display() re-runs the tonemap pass when its inputs
 // changed. The running mean is kept with Kahan compensation (a second RGBA32F texture;
-// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md).
+// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md),
+// and beside it each pixel's variance (two more), from which estimate_error() tells the
+// image's expected error without a reference (renderer/error_estimate.h).
 #pragma once
 
 #include <cstdint>
@@ -18,6 +20,7 @@
 #include <epoxy/gl.h>
 
 #include "renderer/bvh.h"
+#include "renderer/error_estimate.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/image.h"
 #include "renderer/render_options.h"
@@ -101,7 +104,13 @@ class GpuRenderer {
   // last run. Never touches the accumulation.
   void update_display();
 
+  // Samples per pixel traced since the accumulation was reset; with adaptive sampling
+  // (RenderOptions::adaptive) the most any pixel has taken.
   int64_t sample_count() const { return samples_; }
+  // The estimated relMSE of the accumulation (renderer/error_estimate.h): a few small draws
+  // and a read-back of at most 32x32 sums, waiting for the passes in flight; cached until the
+  // next pass.
+  ErrorEstimate estimate_error();
   // GPU time of the trace passes since the accumulation was last reset, from GL_TIMESTAMP
   // queries around each pass. Waits for passes still in flight; trace() itself never waits.
   double trace_gpu_seconds();
@@ -126,6 +135,9 @@ class GpuRenderer {
 
   // Mean linear radiance per pixel (rgb) and the count of discarded non-finite samples (a).
   Image read_accumulation() const;
+  // Each pixel's mean squared deviation of its finite samples (rgb) and the samples it has
+  // taken (a; below sample_count() only with adaptive sampling).
+  Image read_variance() const;
   // The tonemapped display image in [0,1] (calls update_display first).
   Image read_display();
 
@@ -136,6 +148,9 @@ class GpuRenderer {
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
   void upload_environment(const Scene& scene);
   void set_frame_uniforms(const Scene& scene);
+  TraceTargets targets(int i) const {
+    return {accumulation_[i], compensation_[i], variance_[i], variance_compensation_[i]};
+  }
   struct TraceUniforms;
   static void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u);
   std::shared_ptr<ProgramJob> submit_variant_job(const std::string& defines);
@@ -191,7 +206,9 @@ class GpuRenderer {
   // Fragment path: a ping-pong pair of each; compute path: [0] only, written in place.
   GLuint accumulation_[2] = {0, 0};
   GLuint compensation_[2] = {0, 0};      // what each accumulation's float32 mean could not hold
-  GLuint accumulation_fbo_[2] = {0, 0};  // each draws into accumulation_[i] and compensation_[i]
+  GLuint variance_[2] = {0, 0};          // mean squared deviation of each pixel's samples
+  GLuint variance_compensation_[2] = {0, 0};
+  GLuint accumulation_fbo_[2] = {0, 0};  // each draws into the four targets of side i
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
   static constexpr int kBuffers = 8;
@@ -207,6 +224,12 @@ class GpuRenderer {
   int width_ = 0;
   int height_ = 0;
   int64_t samples_ = 0;
+  int64_t passes_ = 0;             // draws since the reset (adaptive sampling's pass index)
+  float adaptive_threshold_ = 0;   // the image's mean error per sample at the last estimate
+  int64_t threshold_samples_ = 0;  // sample_count() when adaptive_threshold_ was taken
+  std::unique_ptr<ErrorEstimator> estimator_;
+  ErrorEstimate estimate_;
+  int64_t estimate_samples_ = -1;  // sample_count() when estimate_ was taken
   bool display_stale_ = true;
   bool first_sync_ = true;
   SceneDigests digests_;

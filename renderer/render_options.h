@@ -28,6 +28,13 @@ struct RenderOptions {
   // samples takes there (for every sampler). A sample range A:B (`glint render --samples`)
   // is first_sample = A and B-A samples; merging ranges 0..N gives the N-sample render.
   uint32_t first_sample = 0;
+  // Adaptive sampling (docs/DESIGN.md §2): pixels whose estimated error per sample is below the
+  // image's mean wait, except every adaptive_every-th pass, once they hold adaptive_min_samples.
+  // Off by default: a uniform render's every pixel gets the same samples, so sample ranges of
+  // a render add up to it exactly and tests compare images bit for bit.
+  bool adaptive = false;
+  int adaptive_min_samples = 16;
+  int adaptive_every = 8;
   bool operator==(const RenderOptions&) const = default;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include <epoxy/gl.h>
@@ -26,32 +27,66 @@ int64_t next_checkpoint(int64_t samples, int64_t target) {
 }
 
 bool time_target(const RenderTarget& t) { return t.seconds > 0; }
+bool error_target(const RenderTarget& t) { return t.error > 0; }
+// The sample count that ends the session, 0 for none.
+int64_t sample_cap(const RenderTarget& t) {
+  return error_target(t) || !time_target(t) ? std::max<int64_t>(0, t.samples) : 0;
+}
 
 }  // namespace
 
+const char* stop_reason_text(StopReason reason) {
+  switch (reason) {
+    case StopReason::samples: return "sample count";
+    case StopReason::time: return "time";
+    case StopReason::error: return "error target";
+    case StopReason::cancelled: return "cancelled";
+    case StopReason::none: break;
+  }
+  return "none";
+}
+
 RenderSession::RenderSession(GpuRenderer& renderer, RenderSessionOptions options)
     : renderer_(renderer), options_(options) {
-  if (!time_target(options_.target) && options_.target.samples < 1)
+  const RenderTarget& t = options_.target;
+  if (!time_target(t) && !error_target(t) && t.samples < 1)
     throw std::invalid_argument("a render session needs a sample target of at least 1 or a time target");
+  if (error_target(t) && !time_target(t) && t.samples < 1)
+    throw std::invalid_argument("a render session with an error target needs a sample or a time cap");
   set_batch_policy(options_.batch);
   batch_ = std::clamp(options_.batch.first_batch, 1, std::max(1, options_.batch.max_batch));
   if (options_.checkpoints)
-    checkpoint_ = next_checkpoint(samples(), time_target(options_.target) ? 0 : options_.target.samples);
+    checkpoint_ = next_checkpoint(samples(), sample_cap(options_.target));
 }
 
 int64_t RenderSession::samples() const { return renderer_.sample_count(); }
 
+StopReason RenderSession::stop_reason() const {
+  const RenderTarget& t = options_.target;
+  if (error_target(t) && samples() >= kErrorTargetMinSamples && estimated_relmse_ >= 0 &&
+      estimated_relmse_ <= t.error)
+    return StopReason::error;
+  if (sample_cap(t) > 0 && samples() >= sample_cap(t)) return StopReason::samples;
+  if (time_target(t) && seconds_ >= t.seconds && samples() > 0) return StopReason::time;
+  if (cancelled_) return StopReason::cancelled;
+  return StopReason::none;
+}
+
 bool RenderSession::target_reached() const {
-  return time_target(options_.target) ? seconds_ >= options_.target.seconds && samples() > 0
-                                      : samples() >= options_.target.samples;
+  const StopReason r = stop_reason();
+  return r != StopReason::none && r != StopReason::cancelled;
 }
 
 bool RenderSession::done() const { return cancelled_ || target_reached(); }
 
 float RenderSession::progress() const {
   if (target_reached()) return 1;
-  const double p = time_target(options_.target) ? seconds_ / options_.target.seconds
-                                                : double(samples()) / double(options_.target.samples);
+  const RenderTarget& t = options_.target;
+  double p = 0;
+  if (time_target(t)) p = std::max(p, seconds_ / t.seconds);
+  if (sample_cap(t) > 0) p = std::max(p, double(samples()) / double(sample_cap(t)));
+  // relMSE falls as 1/n: the fraction of the samples needed so far.
+  if (error_target(t) && estimated_relmse_ > 0) p = std::max(p, t.error / estimated_relmse_);
   return static_cast<float>(std::clamp(p, 0.0, 1.0));
 }
 
@@ -64,19 +99,30 @@ void RenderSession::trace_pass() {
   // The batch, capped at the sample target and the next checkpoint so that both are hit
   // exactly.
   int64_t k = batch_;
-  if (!time_target(options_.target)) k = std::min(k, options_.target.samples - samples());
+  if (sample_cap(options_.target) > 0) k = std::min(k, sample_cap(options_.target) - samples());
+  // Towards an error target, relMSE falls as 1/n: a pass need not go much beyond the samples
+  // that the last estimate says are missing (it would overshoot the target by the batch).
+  if (error_target(options_.target) && estimated_relmse_ >= 0) {
+    const double needed = double(samples()) * (estimated_relmse_ / options_.target.error - 1.0);
+    const int64_t to_minimum = kErrorTargetMinSamples - samples();
+    k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
+  }
   if (checkpoint_ > 0) k = std::min(k, checkpoint_ - samples());
   const auto start = Clock::now();
   renderer_.trace(static_cast<int>(k));
   glFinish();  // the pass's real time (and passes do not queue up)
   const double t = seconds_since(start);
   seconds_ += t;
+  // Outside the timed pass: the estimate is a small read-back (renderer/error_estimate.h).
+  if (error_target(options_.target)) {
+    const ErrorEstimate e = renderer_.estimate_error();
+    estimated_relmse_ = e.known() ? e.relmse : -1;
+  }
   const BatchPolicy& p = options_.batch;
   if (k == batch_ && t < p.grow_below && batch_ < p.max_batch) batch_ = std::min(batch_ * 2, p.max_batch);
   else if (t > p.shrink_above && batch_ > 1) batch_ /= 2;
   at_checkpoint_ = checkpoint_ > 0 && samples() == checkpoint_;
-  if (at_checkpoint_)
-    checkpoint_ = next_checkpoint(samples(), time_target(options_.target) ? 0 : options_.target.samples);
+  if (at_checkpoint_) checkpoint_ = next_checkpoint(samples(), sample_cap(options_.target));
 }
 
 int64_t RenderSession::step(double slice_seconds) {

@@ -13,11 +13,22 @@ namespace glint {
 class GpuRenderer;
 
 // What ends the render: exactly `samples` samples per pixel or, when seconds > 0, `seconds` of
-// tracing (at least one sample).
+// tracing (at least one sample). With an error target (error > 0): the estimated relMSE of the
+// image (GpuRenderer::estimate_error) at most `error`, or `samples` (when > 0) or `seconds`
+// (when > 0) as caps, whichever comes first.
+// An error target is never met before kErrorTargetMinSamples samples per pixel: with fewer,
+// the variance of a pixel is estimated from too few samples to be trusted (a pixel whose rare
+// bright paths have not been found yet looks converged).
+inline constexpr int64_t kErrorTargetMinSamples = 16;
 struct RenderTarget {
   int64_t samples = 64;
   double seconds = 0;
+  double error = 0;
 };
+
+// Which limit ended a session (RenderSession::stop_reason).
+enum class StopReason { none, samples, time, error, cancelled };
+const char* stop_reason_text(StopReason reason);  // "sample count", "time", "error target", ...
 
 // How many samples a pass traces. A pass cannot be interrupted, so a batch starts small and
 // doubles while a full pass takes less than grow_below seconds (fewer passes, the same
@@ -55,6 +66,12 @@ class RenderSession {
   // checkpoint's read-back does not count as rendering). `after_pass` may cancel.
   void run(const std::function<void(RenderSession&)>& after_pass = {});
 
+  // Which limit ended it; none while it runs.
+  StopReason stop_reason() const;
+  // The estimated relMSE after the last pass, known when the target has an error (it is
+  // computed after every pass then); otherwise -1.
+  double estimated_relmse() const { return estimated_relmse_; }
+
   // The last pass ended on a checkpoint (options.checkpoints).
   bool at_checkpoint() const { return at_checkpoint_; }
   int64_t samples() const;
@@ -77,6 +94,7 @@ class RenderSession {
   bool at_checkpoint_ = false;
   bool cancelled_ = false;
   double seconds_ = 0;
+  double estimated_relmse_ = -1;
 };
 
 }  // namespace glint

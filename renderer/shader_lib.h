@@ -58,6 +58,7 @@ namespace {
 #include "shaders/lib/camera.glsl"
 #include "shaders/lib/bsdf.glsl"
 #include "shaders/lib/tonemap.glsl"
+#include "shaders/lib/error_estimate.glsl"
 #include "shaders/lib/lights.glsl"
 ivec2 env_distribution_size() { return ivec2(environment_tables.width, environment_tables.height); }
 float env_marginal_cdf(int i) { return environment_tables.marginal_cdf[i]; }

@@ -40,9 +40,9 @@ std::unique_ptr<GlProgram> start_trace_program(TraceBackend backend, WorkGroup g
   return GlProgram::start("fullscreen.vert", "trace.frag", defines);
 }
 
-void bind_trace_images(GLuint accumulation, GLuint compensation) {
-  glBindImageTexture(0, accumulation, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glBindImageTexture(1, compensation, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+void bind_trace_images(const TraceTargets& t) {
+  const GLuint images[4] = {t.accumulation, t.compensation, t.variance, t.variance_compensation};
+  for (GLuint i = 0; i < 4; ++i) glBindImageTexture(i, images[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
 }
 
 void dispatch_trace(int width, int height, WorkGroup group) {
@@ -53,13 +53,13 @@ void dispatch_trace(int width, int height, WorkGroup group) {
 }
 
 void warm_up_compute_pass() {
-  GLuint targets[2] = {0, 0};
-  glCreateTextures(GL_TEXTURE_2D, 2, targets);
+  GLuint targets[4] = {0, 0, 0, 0};
+  glCreateTextures(GL_TEXTURE_2D, 4, targets);
   for (GLuint t : targets) glTextureStorage2D(t, 1, GL_RGBA32F, 1, 1);
-  bind_trace_images(targets[0], targets[1]);
+  bind_trace_images({targets[0], targets[1], targets[2], targets[3]});
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  glDeleteTextures(2, targets);
+  glDeleteTextures(4, targets);
 }
 
 }  // namespace glint

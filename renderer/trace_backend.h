@@ -37,14 +37,21 @@ std::unique_ptr<GlProgram> start_trace_program(TraceBackend backend, WorkGroup g
 // The defines a compute program is compiled with besides the specialisation's: its work group.
 std::string work_group_defines(WorkGroup group);
 
-// Compute path: binds accumulation and compensation (RGBA32F) to image units 0 and 1, read and
-// write, as shaders/trace.comp declares them.
-void bind_trace_images(GLuint accumulation, GLuint compensation);
+// The textures a trace pass reads and writes (RGBA32F, see shaders/trace_common.glsl).
+struct TraceTargets {
+  GLuint accumulation = 0;
+  GLuint compensation = 0;
+  GLuint variance = 0;
+  GLuint variance_compensation = 0;
+};
+// Compute path: binds the four targets to image units 0-3, read and write, as
+// shaders/trace.comp declares them.
+void bind_trace_images(const TraceTargets& targets);
 // One pass over width x height pixels: ceil(width / x) x ceil(height / y) groups (the shader
 // skips the overhang), then the barrier that makes its image stores visible to the next pass's
 // image loads, the tonemap pass's texture fetches and read-back or clears of the textures.
 void dispatch_trace(int width, int height, WorkGroup group);
-// For a job on the program worker (renderer/program_worker.h): binds two 1x1 images of the
+// For a job on the program worker (renderer/program_worker.h): binds four 1x1 images of the
 // pass's formats and dispatches one group with the program in use, so that the driver compiles
 // there the code the renderer's first pass will look up (uniforms are the caller's).
 void warm_up_compute_pass();

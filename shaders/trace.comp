@@ -1,10 +1,10 @@
 #version 450 core
 // (renderer/shader_features.cpp inserts `#define GLINT_NO_...` lines here for what the scene
 // lacks, and renderer/trace_backend.cpp the work-group size.)
-// Path tracing pass as a compute shader, one invocation per pixel: the accumulation and the
-// compensation are read and written in place (image load/store, no ping-pong); each pixel is
-// read and written by its own invocation only, so no synchronisation within a dispatch is
-// needed, and the renderer puts a glMemoryBarrier between dispatches.
+// Path tracing pass as a compute shader, one invocation per pixel: the accumulation, the
+// variance and their compensations are read and written in place (image load/store, no
+// ping-pong); each pixel is read and written by its own invocation only, so no synchronisation
+// within a dispatch is needed, and the renderer puts a glMemoryBarrier between dispatches.
 #ifndef GLINT_GROUP_X
 #define GLINT_GROUP_X 8
 #endif
@@ -16,14 +16,21 @@
 layout(local_size_x = GLINT_GROUP_X, local_size_y = GLINT_GROUP_Y) in;
 layout(binding = 0, rgba32f) uniform image2D u_accumulation;
 layout(binding = 1, rgba32f) uniform image2D u_compensation;
+layout(binding = 2, rgba32f) uniform image2D u_variance;
+layout(binding = 3, rgba32f) uniform image2D u_variance_compensation;
 
 void main() {
   // Row y of the image is row y of the texture (top first), as in trace.frag.
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (pixel.x >= u_resolution.x || pixel.y >= u_resolution.y) return;  // the last groups' overhang
-  vec4 accumulation = u_samples_before > 0u ? imageLoad(u_accumulation, pixel) : vec4(0.0);
-  vec3 compensation = u_samples_before > 0u ? imageLoad(u_compensation, pixel).rgb : vec3(0.0);
-  add_samples(pixel, accumulation, compensation);
+  bool before = u_samples_before > 0u;
+  vec4 accumulation = before ? imageLoad(u_accumulation, pixel) : vec4(0.0);
+  vec4 compensation = before ? imageLoad(u_compensation, pixel) : vec4(0.0);
+  vec3 variance = before ? imageLoad(u_variance, pixel).rgb : vec3(0.0);
+  vec3 variance_compensation = before ? imageLoad(u_variance_compensation, pixel).rgb : vec3(0.0);
+  add_samples(pixel, accumulation, compensation, variance, variance_compensation);
   imageStore(u_accumulation, pixel, accumulation);
-  imageStore(u_compensation, pixel, vec4(compensation, 0.0));
+  imageStore(u_compensation, pixel, compensation);
+  imageStore(u_variance, pixel, vec4(variance, 0.0));
+  imageStore(u_variance_compensation, pixel, vec4(variance_compensation, 0.0));
 }

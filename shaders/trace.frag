@@ -2,21 +2,31 @@
 // (renderer/shader_features.cpp inserts `#define GLINT_NO_...` lines here for what the scene
 // lacks; none defined is the generic program.)
 // Path tracing pass as a fragment shader, one fragment per pixel: reads the previous
-// accumulation and compensation and writes the next ones (ping-pong render targets).
+// accumulation, variance and their compensations and writes the next ones (ping-pong render
+// targets).
 #include "trace_common.glsl"
 
 layout(binding = 0) uniform sampler2D u_previous;
 layout(binding = 3) uniform sampler2D u_previous_compensation;
+layout(binding = 5) uniform sampler2D u_previous_variance;
+layout(binding = 6) uniform sampler2D u_previous_variance_compensation;
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_compensation;
+layout(location = 2) out vec4 out_variance;
+layout(location = 3) out vec4 out_variance_compensation;
 
 void main() {
   // Texel row y holds image row y (top first), so read-back needs no flip.
   ivec2 pixel = ivec2(gl_FragCoord.xy);
-  vec4 accumulation = u_samples_before > 0u ? texelFetch(u_previous, pixel, 0) : vec4(0.0);
-  vec3 compensation = u_samples_before > 0u ? texelFetch(u_previous_compensation, pixel, 0).rgb : vec3(0.0);
-  add_samples(pixel, accumulation, compensation);
+  bool before = u_samples_before > 0u;
+  vec4 accumulation = before ? texelFetch(u_previous, pixel, 0) : vec4(0.0);
+  vec4 compensation = before ? texelFetch(u_previous_compensation, pixel, 0) : vec4(0.0);
+  vec3 variance = before ? texelFetch(u_previous_variance, pixel, 0).rgb : vec3(0.0);
+  vec3 variance_compensation = before ? texelFetch(u_previous_variance_compensation, pixel, 0).rgb : vec3(0.0);
+  add_samples(pixel, accumulation, compensation, variance, variance_compensation);
   out_accumulation = accumulation;
-  out_compensation = vec4(compensation, 0.0);
+  out_compensation = compensation;
+  out_variance = vec4(variance, 0.0);
+  out_variance_compensation = vec4(variance_compensation, 0.0);
 }

@@ -6,8 +6,11 @@
 // the generic program).
 // Accumulation texel: rgb = mean of the finite samples so far, a = count of samples discarded
 // (non-finite, or cut short by the BVH step cap); compensation texel: rgb = the low-order part
-// of the mean that float32 could not hold (Kahan), a unused. The exact sample count lives on
-// the CPU.
+// of the mean that float32 could not hold (Kahan), a = samples this pixel has taken (finite and
+// discarded; below u_samples_before only with adaptive sampling). Variance texel: rgb = mean
+// squared deviation of the finite samples from their mean (M2 / n, Chan et al.'s pairwise
+// update), its compensation texel: rgb what float32 could not hold of it; a unused in both.
+// The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §2) is computed from them.
 // Next-event estimation samples emitting shapes and an environment map; with neither there is
 // nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
 #if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
@@ -16,6 +19,7 @@
 #include "lib/common.glsl"
 #include "lib/rng.glsl"
 #include "lib/sobol.glsl"
+#include "lib/error_estimate.glsl"
 #include "lib/mapping.glsl"
 #include "lib/sampling.glsl"
 #include "lib/intersect.glsl"
@@ -92,6 +96,14 @@ uniform float u_env_rotation;
 uniform int u_light_count;
 uniform float u_env_select;
 uniform bool u_russian_roulette;
+// Adaptive sampling (docs/DESIGN.md §2): once a pixel has u_adaptive_min_samples, a pass
+// samples it only if its estimated error per sample taken is at least u_adaptive_threshold,
+// or if the pass is one of every u_adaptive_every (so that every pixel keeps sampling).
+uniform bool u_adaptive;
+uniform float u_adaptive_threshold;
+uniform uint u_adaptive_min_samples;
+uniform uint u_adaptive_every;
+uniform uint u_pass_index;
 uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
 // Owen-scrambled Sobol points instead of independent PCG numbers; a constant in programs for
 // one sampler (renderer/shader_features.h), so that the other one's code is left out.
@@ -498,15 +510,39 @@ vec3 trace_path(Ray ray) {
   return radiance;
 }
 
-// Adds u_samples_per_pass samples to the pixel's running mean: `accumulation` (rgb the mean,
-// a the discarded count) and `compensation` (what float32 could not hold of the mean) hold the
-// pixel's state before the pass (zero before the first) and receive it after. The two entry
-// points (trace.frag, trace.comp) differ only in where they read and write it.
-void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) {
+// Whether adaptive sampling adds samples to this pixel in this pass. The allocation that
+// minimises the image's summed error for a sample budget gives each pixel samples in proportion
+// to its standard deviation (the Neyman allocation of stratified sampling, Cochran, "Sampling
+// Techniques", 3rd ed., §5.5); at that optimum every pixel's error per sample, relMSE / n, is
+// the same, so a pixel above the image's mean of it (u_adaptive_threshold, from the last
+// estimate) needs samples and one below it waits, as Cycles' adaptive sampling lets converged
+// pixels wait. Unlike Cycles none waits forever: every u_adaptive_every-th pass samples all, so
+// each pixel's count grows without bound and the image stays consistent.
+bool adaptive_pixel_active(vec4 accumulation, vec4 compensation, vec3 variance) {
+  if (!u_adaptive) return true;
+  float taken = compensation.a;
+  if (taken < float(u_adaptive_min_samples) || u_pass_index % u_adaptive_every == 0u) return true;
+  float finite = taken - accumulation.a;
+  float r = estimated_pixel_relmse(accumulation.rgb, variance, finite);
+  return r < 0.0 || r / finite >= u_adaptive_threshold;  // no estimate yet: sample
+}
+
+// Adds u_samples_per_pass samples to the pixel's running mean and variance: `accumulation`
+// (rgb the mean, a the discarded count), `compensation` (what float32 could not hold of the
+// mean; a the samples taken), `variance` and `variance_compensation` (the same for the mean
+// squared deviation) hold the pixel's state before the pass (zero before the first) and
+// receive it after. The two entry points (trace.frag, trace.comp) differ only in where they
+// read and write it. With adaptive sampling a waiting pixel keeps its state.
+void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
+                 inout vec3 variance, inout vec3 variance_compensation) {
+  if (!adaptive_pixel_active(accumulation, compensation, variance)) return;
   CameraFrame cam = CameraFrame(u_cam_origin, u_cam_right, u_cam_up, u_cam_forward,
                                 u_cam_tan_half_vfov, u_cam_aspect, u_cam_aperture, u_cam_focus);
   uint row = uint(pixel.y);
   vec4 previous = accumulation;
+  // Without adaptive sampling every pixel has taken u_samples_before samples; with it, its own
+  // count, so that its sample indices (and its Sobol' points) continue without a gap.
+  uint samples_before = u_adaptive ? uint(compensation.a) : u_samples_before;
   // The pass adds the sum of the samples' deviations from the previous mean, not their sum:
   // mean += sum(l - mean) / n. The deviations are small (exactly 0 for a constant once the mean
   // has reached it), so their rounding is small too; summing the samples themselves and
@@ -515,9 +551,16 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) 
   // (hard_Accumulation.MillionSamplesOfAConstantDoNotDrift).
   g_pixel_seed = sobol_pixel_seed(uint(pixel.x), row, u_seed);
   vec3 deviation_sum = vec3(0.0);
+  // The variance's sums are taken about `shift`: the previous mean, or for a pixel's first
+  // finite sample that sample itself (about 0, sum(l^2) - sum(l)^2 / k would cancel to a
+  // rounding error of the size of l^2 for a constant l).
+  bool no_mean_yet = float(samples_before) - previous.a <= 0.0;
+  vec3 shift = previous.rgb;
+  vec3 shifted_sum = vec3(0.0);
+  vec3 shifted_square_sum = vec3(0.0);
   int finite_count = 0;
   for (int s = 0; s < u_samples_per_pass; ++s) {
-    g_sample_index = u_first_sample + u_samples_before + uint(s);
+    g_sample_index = u_first_sample + samples_before + uint(s);
     g_rng = rng_seed(uint(pixel.x), row, g_sample_index, u_seed);
     if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
     g_incomplete = false;
@@ -530,11 +573,15 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) 
     if (u_clamp > 0.0 && lum > u_clamp) l *= u_clamp / lum;
     if (is_finite(l) && !g_incomplete) {
       deviation_sum += l - previous.rgb;
+      if (no_mean_yet && finite_count == 0) shift = l;
+      shifted_sum += l - shift;
+      shifted_square_sum += (l - shift) * (l - shift);
       ++finite_count;
     }
   }
   float discarded = previous.a + float(u_samples_per_pass - finite_count);
-  float finite_total = float(u_samples_before) + float(u_samples_per_pass) - discarded;
+  float taken = float(samples_before) + float(u_samples_per_pass);
+  float finite_total = taken - discarded;
   // The increment sum(l - mean) / n itself is rounded when added to the mean: by up to half an
   // ulp of the mean, and when most increments are smaller than that (a pixel of a constant
   // background with a rare brighter sample, late in a long run) they round the same way every
@@ -545,13 +592,30 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec3 compensation) 
   // (so the deviations, taken from `mean`, are short by finite_count * compensation).
   // `precise` forbids the compiler to simplify (t - mean) - y to 0.
   precise vec3 mean = previous.rgb;
-  precise vec3 lost = compensation;
+  precise vec3 lost = compensation.rgb;
   if (finite_total > 0.0) {
     precise vec3 y = (deviation_sum + float(finite_count) * lost) / finite_total - lost;
     precise vec3 t = mean + y;
     lost = (t - mean) - y;
     mean = t;
   }
+  // The variance, v = M2 / n, by Chan, Golub and LeVeque's pairwise update ("Algorithms for
+  // computing the sample variance", 1983) of M2 with the pass's k samples, written with the
+  // deviations d from the previous mean (from the first sample when there is none):
+  // M2' = M2 + sum(d^2) - sum(d)^2 / n', so that v' = v + (sum(d^2) - sum(d)^2 / n' - k v) / n'.
+  // Every term is a deviation, not a square of the radiance, so nothing cancels; the
+  // increment is added with Kahan's compensation as the mean's is.
+  precise vec3 v = variance;
+  precise vec3 v_lost = variance_compensation;
+  if (finite_total > 0.0) {
+    vec3 m2_increment = max(shifted_square_sum - shifted_sum * shifted_sum / finite_total, vec3(0.0));
+    precise vec3 y = (m2_increment - float(finite_count) * (v - v_lost)) / finite_total - v_lost;
+    precise vec3 t = v + y;
+    v_lost = (t - v) - y;
+    v = t;
+  }
   accumulation = vec4(mean, discarded);
-  compensation = lost;
+  compensation = vec4(lost, taken);
+  variance = v;
+  variance_compensation = v_lost;
 }

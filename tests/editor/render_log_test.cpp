@@ -20,7 +20,7 @@ namespace glint {
 namespace {
 namespace fs = std::filesystem;
 
-const char* const kHeader = "spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite";
+const char* const kHeader = "spp,seconds,gpu_seconds,relmse,estimated_relmse,relmse_trimmed,mape,mean_bias,nonfinite";
 
 // `glint render ARGS...`: the arguments after "render", as main passes them.
 int render(std::vector<std::string> args) {
@@ -31,10 +31,10 @@ int render(std::vector<std::string> args) {
 
 struct Row {
   long long spp = 0;
-  double seconds, gpu_seconds, relmse, relmse_trimmed, mape, mean_bias, nonfinite;
+  double seconds, gpu_seconds, relmse, estimated_relmse, relmse_trimmed, mape, mean_bias, nonfinite;
 };
 
-// Reads the log, checking the header and that every row has exactly eight numbers.
+// Reads the log, checking the header and that every row has exactly nine numbers.
 std::vector<Row> read_log(const fs::path& file) {
   std::ifstream in(file);
   std::string line;
@@ -45,9 +45,9 @@ std::vector<Row> read_log(const fs::path& file) {
     std::vector<double> v;
     std::stringstream ss(line);
     for (std::string field; std::getline(ss, field, ',');) v.push_back(std::stod(field));
-    EXPECT_EQ(v.size(), 8u) << line;
-    if (v.size() != 8) continue;
-    rows.push_back({static_cast<long long>(v[0]), v[1], v[2], v[3], v[4], v[5], v[6], v[7]});
+    EXPECT_EQ(v.size(), 9u) << line;
+    if (v.size() != 9) continue;
+    rows.push_back({static_cast<long long>(v[0]), v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]});
   }
   return rows;
 }
@@ -99,6 +99,9 @@ TEST(RenderLog, NoisySceneConvergesTowardsAnIndependentReference) {
     EXPECT_GT(r.seconds, 0);
     EXPECT_GT(r.gpu_seconds, 0);
     EXPECT_LE(r.relmse_trimmed, r.relmse);
+    // The estimate needs two samples per pixel; from then on it is a positive number.
+    if (r.spp >= 2) EXPECT_GT(r.estimated_relmse, 0) << "row " << i;
+    else EXPECT_TRUE(std::isnan(r.estimated_relmse)) << "row " << i;
     EXPECT_EQ(r.nonfinite, 0);
     if (i > 0) {
       EXPECT_GT(r.seconds, rows[i - 1].seconds);
@@ -129,6 +132,7 @@ TEST(RenderLog, WhiteFurnaceMatchesItsExactImageAtEveryCheckpoint) {
   for (const Row& r : rows) {
     EXPECT_LT(r.relmse, 1e-9);
     EXPECT_LT(r.relmse_trimmed, 1e-9);
+    if (r.spp >= 2) EXPECT_LT(r.estimated_relmse, 1e-9);  // no variance to estimate
     EXPECT_LT(r.mape, 1e-5);
     EXPECT_LT(std::abs(r.mean_bias), 1e-5);
     EXPECT_EQ(r.nonfinite, 0);
@@ -144,6 +148,34 @@ TEST(RenderLog, TimeLimitedRenderLogsPowersOfTwo) {
   std::vector<Row> rows = read_log(dir / "log.csv");
   ASSERT_FALSE(rows.empty());
   for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].spp, 1LL << i);
+}
+
+// --target-error: the zero-variance furnace meets any target at the first sample count allowed
+// (16 spp); an unreachable one stops at the --spp cap; the last line names the limit.
+TEST(RenderTargetError, SaysWhichLimitEndedTheRender) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  const std::string project = (dir / "furnace.glint").string(), out = (dir / "out.exr").string();
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({project, "-o", out, "--target-error", "1e-6"}), 0);
+  std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("stopped by the error target: estimated relMSE "), std::string::npos) << err;
+  EXPECT_NE(err.find("(target 1e-06) at 16 spp"), std::string::npos) << err;
+  Scene noisy = furnace_scene();
+  noisy.materials[0].color = {0.5f, 0.5f, 0.5f};
+  noisy.quads.push_back({.name = "lamp", .material = "lamp",
+                         .corners = {glm::vec3{-1, 2, -1}, glm::vec3{-1, 2, 1}, glm::vec3{1, 2, -1}, glm::vec3{1, 2, 1}}});
+  noisy.materials.push_back({.name = "lamp", .color = {0, 0, 0}, .emission = {20, 20, 20}});
+  save_project(noisy, dir / "noisy.glint");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({(dir / "noisy.glint").string(), "-o", out, "--target-error", "1e-12", "--spp", "20"}), 0);
+  err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("stopped by the sample count"), std::string::npos) << err;
+  EXPECT_NE(err.find("at 20 spp"), std::string::npos) << err;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({project, "-o", out, "--target-error", "0"}), 2);
+  err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("--target-error expects a positive relMSE, got '0'"), std::string::npos) << err;
 }
 
 TEST(RenderLog, ReferenceAndLogGoTogether) {

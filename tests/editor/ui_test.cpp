@@ -14,6 +14,7 @@
 
 #include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
 
+#include "renderer/render_session.h"
 #include "editor/editor_frame.h"
 #include "editor/picking.h"
 #include "editor/recent_and_recovery.h"
@@ -503,6 +504,35 @@ TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
   press(GLFW_KEY_ENTER);
   frame();
   EXPECT_FALSE(error_open_);
+}
+
+// The status line shows the estimated error once the viewport has samples; with a target error
+// (the Sampling section's field) the accumulation pauses when the estimate reaches it, and the
+// status line says so.
+TEST_F(UiTest, StatusLineShowsTheEstimatedErrorAndPausesAtTheTarget) {
+  for (int i = 0; i < 200 && state_.viewport.frame.stats.spp < 2; ++i) frame();
+  frame();
+  std::string text = status_text();
+  ASSERT_GE(state_.viewport.frame.stats.spp, 2);
+  EXPECT_NE(text.find("est. relMSE "), std::string::npos) << text;
+  EXPECT_EQ(text.find("paused"), std::string::npos) << text;
+  const double estimate = state_.viewport.frame.stats.estimated_relmse;
+  EXPECT_GT(estimate, 0);
+  // A target above any estimate the default project has at 16 spp: reached at 16 spp or soon
+  // after, then no more samples.
+  state_.viewport.target_error = 1e6;
+  for (int i = 0; i < 400 && !state_.viewport.frame.stats.target_reached; ++i) frame();
+  ASSERT_TRUE(state_.viewport.frame.stats.target_reached);
+  const int64_t paused_at = state_.viewport.frame.stats.spp;
+  EXPECT_GE(paused_at, kErrorTargetMinSamples);
+  for (int i = 0; i < 5; ++i) frame();
+  EXPECT_EQ(state_.viewport.frame.stats.spp, paused_at);
+  text = status_text();
+  EXPECT_NE(text.find("reached: paused"), std::string::npos) << text;
+  // Clearing the target resumes.
+  state_.viewport.target_error = 0;
+  for (int i = 0; i < 5; ++i) frame();
+  EXPECT_GT(state_.viewport.frame.stats.spp, paused_at);
 }
 
 // A failing autosave (its state folder cannot be made: a file is in the way) shows in the status
