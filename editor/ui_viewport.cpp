@@ -203,6 +203,7 @@ ViewportRequest viewport_request(const EditorState& state) {
   r.height = std::max(1, int(std::lround(v.size.y * v.framebuffer_scale)));
   r.resolution = v.resolution;
   r.estimator = v.estimator;
+  r.denoise = v.denoise;
   r.trace = !export_running(state);  // the export gets the device while it runs
   return r;
 }

@@ -18,6 +18,7 @@ struct ViewportRequest {
   RenderOptions estimator;  // how the viewport samples (not saved in the project)
   bool trace = true;        // false while an export has the device: sync and tonemap only
   int samples_per_frame = 0;  // > 0: trace exactly this many, not the frame budget's (repeatable runs)
+  bool denoise = false;     // show the denoised image (editor/viewport_denoiser.h; biased)
 };
 
 struct FrameStats {
@@ -28,6 +29,7 @@ struct FrameStats {
   bool restarted = false;  // this frame's sync reset the accumulation
   std::string gl_renderer;
   std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
+  std::string denoise_status;  // with ViewportRequest::denoise: what is shown, or why not
 };
 
 // The frame's result: the image to show for the requested size (0 before the first one) and

@@ -5,8 +5,10 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 
 #include "editor/frame_budget.h"
+#include "editor/viewport_denoiser.h"
 #include "editor/viewport_frame.h"
 #include "renderer/gpu_renderer.h"
 
@@ -41,6 +43,7 @@ class ViewportRenderer {
   int64_t rate_samples_ = 0;
   double spp_rate_ = 0;
   double last_trace_seconds_ = 0;
+  std::unique_ptr<ViewportDenoiser> denoiser_;  // from the first request to denoise
 };
 
 }  // namespace glint

@@ -121,6 +121,7 @@ void GpuRenderer::resize(int width, int height) {
   // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
   glTextureParameteri(display_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   display_fbo_ = make_framebuffer(display_texture_);
+  if (aov_pass_) aov_pass_->resize(width, height);
 }
 
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
@@ -192,6 +193,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     const float zero[4] = {0, 0, 0, 0};
     for (GLuint t : {accumulation_[0], accumulation_[1], compensation_[0], compensation_[1]})
       if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+    if (aov_pass_) aov_pass_->clear();
   }
   digests_ = d;
   synced_options_ = options_;
@@ -655,6 +657,7 @@ void GpuRenderer::trace(int samples) {
       glDrawArrays(GL_TRIANGLES, 0, 3);
       current_ = 1 - current_;
     }
+    if (aov_pass_) trace_aov_pass(n);
     samples_ += n;
     done += n;
   }
@@ -713,6 +716,31 @@ Image GpuRenderer::read_accumulation() const {
     glGetTextureImage(accumulation_[current_], 0, GL_RGBA, GL_FLOAT,
                       static_cast<GLsizei>(image.pixels.size() * sizeof(float)), image.pixels.data());
   return image;
+}
+
+void GpuRenderer::set_aovs_enabled(bool enabled) {
+  if (!enabled) {
+    aov_pass_.reset();
+    return;
+  }
+  if (aov_pass_) return;
+  aov_pass_ = std::make_unique<AovPass>();
+  aov_pass_->resize(width_, height_);
+}
+
+// The same samples as the colour pass just drawn (samples_ not yet advanced), with the scene's
+// buffers and textures as bind_trace_pass left them.
+void GpuRenderer::trace_aov_pass(int samples) {
+  GlProgram& p = aov_pass_->program();
+  apply_trace_uniforms(p, uniforms_);
+  p.set("u_samples_before", static_cast<unsigned>(samples_));
+  p.set("u_samples_per_pass", samples);
+  aov_pass_->draw();
+}
+
+AovImages GpuRenderer::read_aovs() const {
+  if (!aov_pass_) return {};
+  return aov_pass_->read();
 }
 
 Image GpuRenderer::read_display() {

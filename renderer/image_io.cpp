@@ -366,7 +366,11 @@ void parse_exr_header(const std::filesystem::path& path, const std::vector<unsig
                    static_cast<int>(std::clamp<long long>(h, -1, kMaxDimension + 1)));
 }
 
-Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+// The unnamed layer (R, G, B, A or a grey channel) or, with `layer`, its channels layer.R/G/B
+// (or layer.X/Y/Z) and layer.A.
+Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
+               const std::string& layer = "") {
+  const std::string prefix = layer.empty() ? "" : layer + ".";
   ExrFile exr;
   parse_exr_header(path, bytes, exr);
   EXRHeader& header = exr.header;
@@ -377,11 +381,11 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     if (channel.x_sampling != 1 || channel.y_sampling != 1)
       fail(path, "sub-sampled OpenEXR channels are not supported");
     const std::string name = channel.name;
-    if (name == "R") index[0] = c;
-    if (name == "G") index[1] = c;
-    if (name == "B") index[2] = c;
-    if (name == "A") index[3] = c;
-    if (name == "Y") luminance = c;
+    if (name == prefix + "R" || (!layer.empty() && name == prefix + "X")) index[0] = c;
+    if (name == prefix + "G" || (!layer.empty() && name == prefix + "Y")) index[1] = c;
+    if (name == prefix + "B" || (!layer.empty() && name == prefix + "Z")) index[2] = c;
+    if (name == prefix + "A") index[3] = c;
+    if (layer.empty() && name == "Y") luminance = c;
     // Everything is read as float; UINT channels cannot be converted by tinyexr.
     if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
       header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
@@ -389,7 +393,9 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
       fail(path, "integer OpenEXR channel '" + name + "' is not supported");
   }
   // A single channel of any name, or Y, is grey.
-  if (header.num_channels == 1 && luminance < 0) luminance = 0;
+  if (header.num_channels == 1 && luminance < 0 && layer.empty()) luminance = 0;
+  if (!layer.empty() && (index[0] < 0 || index[1] < 0 || index[2] < 0))
+    fail(path, "OpenEXR file has no layer '" + layer + "' (channels " + prefix + "R/G/B or X/Y/Z)");
   if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
     if (luminance < 0) fail(path, "OpenEXR file has neither R, G, B nor a single grey channel");
     index[0] = index[1] = index[2] = luminance;
@@ -493,35 +499,54 @@ std::vector<unsigned char> encode_hdr(const std::filesystem::path& path, const I
 
 // RGBA float32 as tinyexr's SaveEXR writes it (the same bytes): channels in A, B, G, R order
 // as most viewers expect, ZIP compressed unless the image is smaller than 16x16.
-std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
-  const size_t count = static_cast<size_t>(image.width) * image.height;
-  std::vector<float> planes[4];  // A, B, G, R
-  for (int c = 0; c < 4; ++c) {
-    planes[c].resize(count);
-    for (size_t i = 0; i < count; ++i) planes[c][i] = image.pixels[i * 4 + (3 - c)];
+// Every layer's channels as float32, sorted by name as OpenEXR requires.
+std::vector<unsigned char> encode_exr_layers(const std::filesystem::path& path,
+                                             const std::vector<ExrLayer>& layers) {
+  struct Channel {
+    std::string name;
+    const Image* image;
+    int component;
+  };
+  std::vector<Channel> list;
+  for (const ExrLayer& layer : layers) {
+    const Image& image = *layer.image;
+    if (image.width != layers[0].image->width || image.height != layers[0].image->height ||
+        image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
+      fail(path, "the layers of an OpenEXR file must have one size");
+    for (size_t c = 0; c < layer.channels.size() && c < 4; ++c)
+      list.push_back({(layer.name.empty() ? "" : layer.name + ".") + layer.channels[c], &image,
+                      static_cast<int>(c)});
   }
-  unsigned char* pointers[4];
-  EXRChannelInfo channels[4] = {};
-  int pixel_types[4], requested_types[4];
-  for (int c = 0; c < 4; ++c) {
+  std::sort(list.begin(), list.end(), [](const Channel& a, const Channel& b) { return a.name < b.name; });
+  const int width = layers[0].image->width, height = layers[0].image->height;
+  const size_t count = static_cast<size_t>(width) * height;
+  const size_t n = list.size();
+  std::vector<std::vector<float>> planes(n);
+  std::vector<unsigned char*> pointers(n);
+  std::vector<EXRChannelInfo> channels(n);
+  std::vector<int> pixel_types(n, TINYEXR_PIXELTYPE_FLOAT), requested_types(n, TINYEXR_PIXELTYPE_FLOAT);
+  for (size_t c = 0; c < n; ++c) {
+    planes[c].resize(count);
+    for (size_t i = 0; i < count; ++i) planes[c][i] = list[c].image->pixels[i * 4 + list[c].component];
     pointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
-    channels[c].name[0] = "ABGR"[c];
-    pixel_types[c] = requested_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    channels[c] = EXRChannelInfo{};
+    if (list[c].name.size() >= sizeof channels[c].name) fail(path, "OpenEXR channel name too long: " + list[c].name);
+    std::copy(list[c].name.begin(), list[c].name.end(), channels[c].name);
   }
   EXRImage exr_image;
   InitEXRImage(&exr_image);
-  exr_image.num_channels = 4;
-  exr_image.images = pointers;
-  exr_image.width = image.width;
-  exr_image.height = image.height;
+  exr_image.num_channels = static_cast<int>(n);
+  exr_image.images = pointers.data();
+  exr_image.width = width;
+  exr_image.height = height;
   EXRHeader header;
   InitEXRHeader(&header);
-  header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
-                                                                   : TINYEXR_COMPRESSIONTYPE_ZIP;
-  header.num_channels = 4;
-  header.channels = channels;
-  header.pixel_types = pixel_types;
-  header.requested_pixel_types = requested_types;
+  header.compression_type = width < 16 && height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
+                                                       : TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_channels = static_cast<int>(n);
+  header.channels = channels.data();
+  header.pixel_types = pixel_types.data();
+  header.requested_pixel_types = requested_types.data();
   unsigned char* memory = nullptr;
   const char* err = nullptr;
   const size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &err);
@@ -529,6 +554,10 @@ std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const I
   std::vector<unsigned char> file(memory, memory + size);
   std::free(memory);
   return file;
+}
+
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
+  return encode_exr_layers(path, {ExrLayer{"", &image, "RGBA"}});
 }
 
 }  // namespace
@@ -641,6 +670,24 @@ ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::f
   const Format format = require_format(path, bytes);
   if (format == Format::png) check_png_chunks(path, bytes);
   return probe_bytes(path, bytes, format);
+}
+
+void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers) {
+  if (lower_extension(path) != ".exr") fail(path, "layers can only be written to an .exr file");
+  if (layers.empty() || !layers[0].image || layers[0].image->width <= 0 || layers[0].image->height <= 0)
+    fail(path, "cannot save an empty or inconsistent image");
+  const std::vector<unsigned char> file = encode_exr_layers(path, layers);
+  try {
+    write_file_atomically(path, file.data(), file.size());
+  } catch (const FileWriteError& e) {
+    fail(path, e.problem);
+  }
+}
+
+Image load_exr_layer(const std::filesystem::path& path, const std::string& layer) {
+  const std::vector<unsigned char> bytes = read_image_file(path);
+  if (check_before_decoding(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
+  return load_exr(path, bytes, layer);
 }
 
 void save_image(const std::filesystem::path& path, const Image& image) {
