@@ -65,7 +65,7 @@ const char* const kUsage =
     "Denoising and auxiliary images (Intel Open Image Denoise, loaded at run time):\n"
     "  --denoise          the output is denoised with the albedo and normal images: BIASED\n"
     "                     (less noise, but blur and artefacts that no sample count removes);\n"
-    "                     an .exr keeps the noisy colour as the layer noisy.R/G/B/A. Refused\n"
+    "                     an .exr keeps the noisy colour as the layer noisy.R/G/B. Refused\n"
     "                     with --reference/--log, whose error is the unbiased render's. Where\n"
     "                     the library is missing, says so and writes the noisy image\n"
     "  --denoise-quality Q  high (the default) or fast (quicker, less detail)\n"

@@ -54,11 +54,17 @@ def run(glint, project, out, width, seed, extra):
 
 
 def layers(path):
-    """The EXR's layers as float32 RGB arrays: "" the main image, then e.g. "noisy"."""
+    """The EXR's RGB layers as float32 arrays by channel name: "" the main image, "noisy"."""
     mi = mx._mitsuba()
+    bmp = mi.Bitmap(path)
+    fields = bmp.struct_()
+    names = [fields[i].name for i in range(len(fields))]
+    pixels = np.array(bmp, dtype=np.float32).reshape(bmp.height(), bmp.width(), len(names))
     out = {}
-    for name, bmp in mi.Bitmap(path).split():
-        out[name if name != "<root>" else ""] = np.array(bmp, dtype=np.float32)[..., :3]
+    for layer in ("", "noisy"):
+        prefix = layer + "." if layer else ""
+        if all(prefix + c in names for c in "RGB"):
+            out[layer] = np.stack([pixels[..., names.index(prefix + c)] for c in "RGB"], axis=-1)
     return out
 
 

@@ -12,7 +12,8 @@
 
 namespace glint {
 
-ViewportDenoiser::ViewportDenoiser() : worker_([this] { run_worker(); }) {}
+// The thread starts once every member (its mutex above all) is constructed.
+ViewportDenoiser::ViewportDenoiser() { worker_ = std::thread([this] { run_worker(); }); }
 
 ViewportDenoiser::~ViewportDenoiser() {
   {

@@ -60,7 +60,7 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
     save_image(file, colour);
   } else {
     std::vector<ExrLayer> layers{{"", &colour, "RGBA"}};
-    if (denoised) layers.push_back({"noisy", &noisy, "RGBA"});
+    if (denoised) layers.push_back({"noisy", &noisy, "RGB"});
     if (options.aovs && have_aovs) {
       layers.push_back({"albedo", &aovs.albedo, "RGB"});
       layers.push_back({"N", &aovs.normal, "XYZ"});

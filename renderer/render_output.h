@@ -20,7 +20,7 @@ struct RenderOutputOptions {
   // The albedo and normal images (the renderer must have had set_aovs_enabled(true) for the
   // whole render) as the EXR layers albedo.R/G/B and N.X/Y/Z. .exr only.
   bool aovs = false;
-  // The output is the denoised colour; an EXR keeps the noisy one as the layer noisy.R/G/B/A.
+  // The output is the denoised colour; an EXR keeps the noisy one as the layer noisy.R/G/B.
   // Needs the AOVs too. Without the library, the noisy image is written and `note` says so.
   bool denoise = false;
   DenoiseQuality quality = DenoiseQuality::high;
