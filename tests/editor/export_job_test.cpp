@@ -149,9 +149,6 @@ TEST_F(ExportJobTest, RefusesSizesOverTheFilmMemoryLimit) {
   EXPECT_NE(validate_export_settings(s).find("would need"), std::string::npos);
 }
 
-}  // namespace
-}  // namespace glint
-
 // The export's Denoise option: the output is denoised on a worker and an EXR keeps the noisy
 // colour, which is exactly the plain export's (the AOV pass leaves the colour alone).
 TEST(ExportJobDenoise, DenoisedExrKeepsThePlainExportAsItsNoisyLayer) {
@@ -185,3 +182,6 @@ TEST(ExportJobDenoise, DenoisedExrKeepsThePlainExportAsItsNoisyLayer) {
   }
   fs::remove_all(dir);
 }
+
+}  // namespace
+}  // namespace glint
