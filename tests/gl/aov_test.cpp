@@ -120,16 +120,20 @@ TEST(Aov, TheColourImageIsTheSameWithAovsOn) {
   ball.material = "paint";
   s.spheres = {ball};
   s.quads = {square("paint", -1, 100)};
-  Image colour[2];
-  for (int on = 0; on < 2; ++on) {
-    GpuRenderer renderer;
-    renderer.set_aovs_enabled(on == 1);
-    renderer.sync(s, 16, 16);
-    renderer.trace(3);
-    renderer.trace(2);
-    colour[on] = renderer.read_accumulation();
+  for (const TraceBackend backend : {TraceBackend::fragment, TraceBackend::compute}) {
+    Image colour[2];
+    for (int on = 0; on < 2; ++on) {
+      GpuRendererOptions options;
+      options.backend = backend;
+      GpuRenderer renderer(options);
+      renderer.set_aovs_enabled(on == 1);
+      renderer.sync(s, 16, 16);
+      renderer.trace(3);
+      renderer.trace(2);
+      colour[on] = renderer.read_accumulation();
+    }
+    EXPECT_EQ(colour[0].pixels, colour[1].pixels) << backend_name(backend);
   }
-  EXPECT_EQ(colour[0].pixels, colour[1].pixels);
 }
 
 TEST(Aov, AResetClearsThem) {
