@@ -200,8 +200,8 @@ Image Denoiser::denoise(const Image& color, const Image* albedo, const Image* no
       throw DenoiseError("the auxiliary images must have the colour's size");
   if (color.width <= 0 || color.height <= 0) throw DenoiseError("cannot denoise an empty image");
   const size_t bytes = static_cast<size_t>(color.width) * color.height * 3 * sizeof(float);
-  // A new filter when the size or the inputs change: its set-up (the network's weights, the
-  // tiling) is the expensive part, not the execution.
+  // A new filter only when the size or the inputs change: OIDN's documentation warns that
+  // creating one can be expensive.
   if (!s.filter || s.width != color.width || s.height != color.height ||
       s.has_albedo != (albedo != nullptr) || s.has_normal != (normal != nullptr)) {
     s.release_images();
