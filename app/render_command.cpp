@@ -22,6 +22,7 @@
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
 #include "renderer/render_part.h"
+#include "renderer/render_output.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
@@ -38,6 +39,7 @@ const char* const kUsage =
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
     "                    [--backend auto|fragment|compute] [--work-group WxH]\n"
+    "                    [--denoise [--denoise-quality fast|high]] [--aovs]\n"
     "\n"
     "Renders a project headlessly (EGL; no window or display needed).\n"
     "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
@@ -78,6 +80,16 @@ const char* const kUsage =
     "                       from the pixels' sample variance (as --target-error uses it)\n"
     "                     mape: mean of |x-r|/(|r|+0.01); mean_bias: relative error of the\n"
     "                       mean luminance; nonfinite: non-finite samples discarded\n"
+    "Denoising and auxiliary images (Intel Open Image Denoise, loaded at run time):\n"
+    "  --denoise          the output is denoised with the albedo and normal images: BIASED\n"
+    "                     (less noise, but blur and artefacts that no sample count removes);\n"
+    "                     an .exr keeps the noisy colour as the layer noisy.R/G/B. Refused\n"
+    "                     with --reference/--log, whose error is the unbiased render's. Where\n"
+    "                     the library is missing, says so and writes the noisy image\n"
+    "  --denoise-quality Q  high (the default) or fast (quicker, less detail)\n"
+    "  --aovs             .exr only: also write the albedo (albedo.R/G/B) and the normal\n"
+    "                     (N.X/Y/Z, world space) at the first surface that is not a perfect\n"
+    "                     mirror or smooth glass, averaged over the samples like the colour\n"
     "Estimator (not saved in projects; the defaults are unbiased):\n"
     "  --sampler S        random numbers: sobol (the default: Owen-scrambled Sobol points,\n"
     "                     low discrepancy, less noise per sample; each seed is its own\n"
@@ -121,6 +133,8 @@ struct Options {
   bool generic_shader = false;
   std::optional<TraceBackend> backend;  // nullopt: the automatic choice
   WorkGroup work_group;
+  RenderOutputOptions output_options;  // --denoise, --denoise-quality, --aovs
+  bool denoise_quality_given = false;
 };
 
 struct UsageError {
@@ -193,6 +207,15 @@ Options parse(int argc, char** argv) {
     else if (a == "--no-roulette") o.estimator.russian_roulette = false;
     else if (a == "--clamp") o.estimator.clamp = static_cast<float>(parse_positive(a, value(), "luminance"));
     else if (a == "--generic-shader") o.generic_shader = true;
+    else if (a == "--denoise") o.output_options.denoise = true;
+    else if (a == "--aovs") o.output_options.aovs = true;
+    else if (a == "--denoise-quality") {
+      std::string v = value();
+      if (v == "fast") o.output_options.quality = DenoiseQuality::fast;
+      else if (v == "high") o.output_options.quality = DenoiseQuality::high;
+      else throw UsageError{"--denoise-quality expects fast or high, got '" + v + "'"};
+      o.denoise_quality_given = true;
+    }
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
     else if (o.project.empty()) o.project = a;
     else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
@@ -201,6 +224,8 @@ Options parse(int argc, char** argv) {
   if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
   if (o.samples && (o.spp || o.seconds || o.target_error || o.estimator.adaptive))
     throw UsageError{"--samples renders an exact range: it takes no --spp, --time, --target-error or --adaptive"};
+  if (o.samples && (o.output_options.denoise || o.output_options.aovs))
+    throw UsageError{"--samples writes a render part: denoise the merged image (--denoise and --aovs are not for parts)"};
   if (o.spp && o.seconds && !o.target_error)
     throw UsageError{"give --spp or --time, not both (both are caps only with --target-error)"};
   if (o.samples) {
@@ -216,6 +241,14 @@ Options parse(int argc, char** argv) {
   auto ext = std::filesystem::path(o.output).extension().string();
   if (ext != ".png" && ext != ".hdr" && ext != ".exr")
     throw UsageError{"output '" + o.output + "' must end in .png, .hdr or .exr"};
+  if (o.output_options.denoise && !o.log.empty())
+    throw UsageError{"--denoise is biased and is never used with --reference/--log (the log "
+                     "measures the unbiased render's true error): leave one out"};
+  if (o.denoise_quality_given && !o.output_options.denoise)
+    throw UsageError{"--denoise-quality needs --denoise"};
+  if (o.output_options.aovs && ext != ".exr")
+    throw UsageError{"--aovs needs an .exr output (the images are written as its layers), not '" +
+                     o.output + "'"};
   return o;
 }
 
@@ -391,6 +424,10 @@ int run_render_command(int argc, char** argv) {
     }
     GpuRenderer renderer(renderer_options);
     renderer.set_options(o.estimator);
+    // Before the render, so that a missing library is known before a long wait.
+    if (o.output_options.denoise && denoising_available_or_warn_once("glint render"))
+      std::fprintf(stderr, "note: --denoise is biased (the denoiser trades noise for blur)\n");
+    renderer.set_aovs_enabled(o.output_options.denoise || o.output_options.aovs);
     if (o.estimator.clamp > 0)
       std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
     try {
@@ -472,8 +509,14 @@ int run_render_command(int argc, char** argv) {
                    defines.empty() ? "" : ": ", defines.c_str());
     }
 
-    if (o.samples) save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
-    else save_render(renderer, o.output);
+    if (o.samples) {
+      save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
+    } else {
+      const RenderOutputReport written = save_render_output(renderer, scene.display, o.output, o.output_options);
+      if (written.denoised)
+        std::fprintf(stderr, "glint: denoised (biased) with Open Image Denoise on the %s in %.2f s\n",
+                     written.device.c_str(), written.denoise_seconds);
+    }
     if (double discarded = nonfinite_count(renderer.read_accumulation()); discarded > 0)
       std::fprintf(stderr, "warning: %.0f samples were discarded (non-finite, or a BVH traversal past its step cap)\n",
                    discarded);

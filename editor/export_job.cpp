@@ -1,12 +1,15 @@
 #include "editor/export_job.h"
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include <epoxy/gl.h>
 
 #include "renderer/atomic_file.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
+#include "renderer/render_output.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
@@ -46,6 +49,7 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
   options.backend = backend;
   renderer_ = std::make_unique<GpuRenderer>(options);
   renderer_->set_options(settings_.estimator);
+  renderer_->set_aovs_enabled(settings_.denoise);
   renderer_->sync(scene_, settings_.width, settings_.height);
   RenderSessionOptions session;
   session.target = settings_.use_time ? RenderTarget{0, settings_.seconds} : RenderTarget{settings_.samples, 0};
@@ -63,6 +67,11 @@ float ExportJob::progress() const {
 }
 
 void ExportJob::cancel() {
+  if (denoising_.valid()) {  // the render is done and its file being written: let it finish
+    denoising_.wait();
+    poll_denoise();
+    return;
+  }
   if (state_ == State::running) state_ = State::cancelled;
   session_.reset();
   renderer_.reset();  // frees the export-sized buffers now
@@ -70,6 +79,10 @@ void ExportJob::cancel() {
 
 bool ExportJob::step(double slice_seconds) {
   if (state_ != State::running) return false;
+  if (denoising_.valid()) {
+    poll_denoise();
+    return state_ == State::running;
+  }
   try {
     // Passes about a quarter of the slice: fewer passes, yet the UI gets its frames.
     BatchPolicy batch;
@@ -88,10 +101,38 @@ bool ExportJob::step(double slice_seconds) {
 }
 
 void ExportJob::finish() {
-  // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
-  save_render(*renderer_, settings_.output);
+  if (!settings_.denoise) {
+    // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
+    save_render(*renderer_, settings_.output);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    state_ = State::done;
+    return;
+  }
+  // Read back here (GL), denoise and write on a worker: seconds at full HD on a CPU.
+  RenderImages images = read_render_images(*renderer_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  state_ = State::done;
+  denoising_ = std::async(std::launch::async, [images = std::move(images), display = scene_.display,
+                                               output = settings_.output]() {
+    RenderOutputOptions options;
+    options.denoise = true;
+    const RenderOutputReport report = save_render_images(images, display, output, options);
+    if (!report.denoised) return report.note;
+    char text[160];
+    std::snprintf(text, sizeof text, "denoised (biased) on the %s in %.2f s", report.device.c_str(),
+                  report.denoise_seconds);
+    return std::string(text);
+  });
+}
+
+void ExportJob::poll_denoise() {
+  if (denoising_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+  try {
+    denoise_note_ = denoising_.get();
+    state_ = State::done;
+  } catch (const std::exception& e) {
+    state_ = State::failed;
+    error_ = e.what();
+  }
 }
 
 }  // namespace glint

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -27,6 +28,9 @@ struct ExportSettings {
   double seconds = 10;
   std::filesystem::path output;  // .png (tonemapped), .hdr or .exr (linear radiance, alpha 1)
   RenderOptions estimator;        // the viewport's (set when the export starts)
+  // Denoise the output (renderer/render_output.h; biased): on a worker thread once the target
+  // is reached, so the UI keeps running; an EXR keeps the noisy colour as a layer.
+  bool denoise = false;
 };
 
 // "" when valid, else the problem (shown in the dialog before starting). The size has the
@@ -56,10 +60,13 @@ class ExportJob {
   int64_t samples() const;
   double elapsed_seconds() const { return traced_seconds_; }
   const std::string& error() const { return error_; }
+  // When done: how the output was denoised (or why it was not), "" without denoising.
+  const std::string& denoise_note() const { return denoise_note_; }
   const ExportSettings& settings() const { return settings_; }
 
  private:
   void finish();
+  void poll_denoise();
 
   Scene scene_;
   ExportSettings settings_;
@@ -68,6 +75,8 @@ class ExportJob {
   State state_ = State::running;
   std::string error_;
   double traced_seconds_ = 0;
+  std::future<std::string> denoising_;  // the worker's note, once the file is written
+  std::string denoise_note_;
 };
 
 }  // namespace glint

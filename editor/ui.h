@@ -43,6 +43,7 @@ struct ViewportView {
   // Trace pixels per ImGui unit (io.DisplayFramebufferScale): HiDPI traces at framebuffer pixels.
   float framebuffer_scale = 1;
   ViewportResolution resolution = ViewportResolution::automatic;
+  bool denoise = false;  // show the denoised preview (editor/viewport_denoiser.h)
   // How the viewport and exports sample (not saved in the project; see render_options.h).
   RenderOptions estimator;
   // > 0: the viewport pauses its accumulation at this estimated relMSE (not saved).

@@ -16,6 +16,8 @@ void step_export(EditorState& state, double slice_seconds) {
   switch (state.export_ui.job->state()) {
     case ExportJob::State::done:
       state.export_ui.message = "Wrote " + state.export_ui.job->settings().output.string();
+      if (!state.export_ui.job->denoise_note().empty())
+        state.export_ui.message += " (" + state.export_ui.job->denoise_note() + ")";
       show_message(state, state.export_ui.message);
       break;
     case ExportJob::State::failed:
@@ -81,6 +83,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     if (s.output.extension() == kFormats[i]) format = i;
   if (ImGui::Combo("Format", &format, "PNG (tonemapped)\0HDR (linear)\0EXR (linear float)\0")) s.output.replace_extension(kFormats[format]);
   if (ImGui::SmallButton("Choose file...")) choose_file(doc, state, FilePurpose::export_output);
+  ImGui::Checkbox("Denoise (biased; EXR keeps the noisy layer)", &s.denoise);
   ImGui::PopItemWidth();
   ImGui::EndDisabled();
 

@@ -26,7 +26,9 @@ std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
   float full_w = state.viewport.size.x * state.viewport.framebuffer_scale;
   if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
     n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));
-  std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
+  n += std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
+  if (!s.denoise_status.empty() && n < int(sizeof text))
+    std::snprintf(text + n, sizeof text - n, "   %s", s.denoise_status.c_str());
   std::vector<StatusPiece> pieces{{text, ImGui::GetStyleColorVec4(ImGuiCol_Text)}};
   if (state.autosave && !state.autosave->last_error().empty())
     pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1)});

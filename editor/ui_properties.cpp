@@ -276,6 +276,7 @@ void draw_properties(Document& doc, EditorState& state) {
   int res = static_cast<int>(state.viewport.resolution);
   static const char* const kResolutions[] = {"auto (fluid UI)", "full", "1/2", "1/4"};
   if (ImGui::Combo("Preview", &res, kResolutions, 4)) state.viewport.resolution = static_cast<ViewportResolution>(res);
+  ImGui::Checkbox("Denoise preview (biased)", &state.viewport.denoise);
   ImGui::PopItemWidth();
 }
 

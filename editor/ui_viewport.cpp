@@ -204,6 +204,7 @@ ViewportRequest viewport_request(const EditorState& state) {
   r.resolution = v.resolution;
   r.estimator = v.estimator;
   r.target_error = v.target_error;
+  r.denoise = v.denoise;
   r.trace = !export_running(state);  // the export gets the device while it runs
   return r;
 }

@@ -21,6 +21,7 @@ struct ViewportRequest {
   // > 0: accumulation pauses once the estimated relMSE (GpuRenderer::estimate_error) is at most
   // this, from kErrorTargetMinSamples on (renderer/render_session.h).
   double target_error = 0;
+  bool denoise = false;     // show the denoised image (editor/viewport_denoiser.h; biased)
 };
 
 struct FrameStats {
@@ -33,6 +34,7 @@ struct FrameStats {
   bool target_reached = false;   // paused at the request's target_error
   std::string gl_renderer;
   std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
+  std::string denoise_status;  // with ViewportRequest::denoise: what is shown, or why not
 };
 
 // The frame's result: the image to show for the requested size (0 before the first one) and

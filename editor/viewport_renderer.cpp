@@ -100,6 +100,11 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
     filtered_texture_ = tex;
   }
   out.display_texture = tex;
+  if (request.denoise && !denoiser_) denoiser_ = std::make_unique<ViewportDenoiser>();
+  if (denoiser_) {
+    if (GLuint denoised = denoiser_->update(renderer_, scene.display, request.denoise)) out.display_texture = denoised;
+    stats.denoise_status = denoiser_->status();
+  }
   stats.spp = renderer_.sample_count();
   stats.estimated_relmse = estimated_relmse_;
   stats.spp_per_second = spp_rate_;

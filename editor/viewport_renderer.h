@@ -5,8 +5,10 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 
 #include "editor/frame_budget.h"
+#include "editor/viewport_denoiser.h"
 #include "editor/viewport_frame.h"
 #include "renderer/gpu_renderer.h"
 
@@ -49,6 +51,7 @@ class ViewportRenderer {
   double last_trace_seconds_ = 0;
   std::chrono::steady_clock::time_point last_estimate_{};
   double estimated_relmse_ = -1;
+  std::unique_ptr<ViewportDenoiser> denoiser_;  // from the first request to denoise
 };
 
 }  // namespace glint

@@ -137,6 +137,7 @@ void GpuRenderer::resize(int width, int height) {
   // Shown scaled when the editor previews at reduced resolution: smooth, not blocky.
   glTextureParameteri(display_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   display_fbo_ = make_framebuffer({display_texture_});
+  if (aov_pass_) aov_pass_->resize(width, height);
 }
 
 SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
@@ -214,6 +215,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     for (int i = 0; i < 2; ++i)
       for (GLuint t : {accumulation_[i], compensation_[i], variance_[i], variance_compensation_[i]})
         if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+    if (aov_pass_) aov_pass_->clear();
   }
   digests_ = d;
   synced_options_ = options_;
@@ -697,6 +699,7 @@ void GpuRenderer::trace(int samples) {
       glDrawArrays(GL_TRIANGLES, 0, 3);
       current_ = 1 - current_;
     }
+    if (aov_pass_) trace_aov_pass(n);
     samples_ += n;
     ++passes_;
     done += n;
@@ -780,6 +783,31 @@ Image GpuRenderer::read_variance() const {
   glGetTextureImage(compensation_[current_], 0, GL_RGBA, GL_FLOAT, bytes, compensation.data());
   for (size_t i = 3; i < n; i += 4) image.pixels[i] = compensation[i];
   return image;
+}
+
+void GpuRenderer::set_aovs_enabled(bool enabled) {
+  if (!enabled) {
+    aov_pass_.reset();
+    return;
+  }
+  if (aov_pass_) return;
+  aov_pass_ = std::make_unique<AovPass>();
+  aov_pass_->resize(width_, height_);
+}
+
+// The same samples as the colour pass just drawn (samples_ not yet advanced), with the scene's
+// buffers and textures as bind_trace_pass left them.
+void GpuRenderer::trace_aov_pass(int samples) {
+  GlProgram& p = aov_pass_->program();
+  apply_trace_uniforms(p, uniforms_);
+  p.set("u_samples_before", static_cast<unsigned>(samples_));
+  p.set("u_samples_per_pass", samples);
+  aov_pass_->draw();
+}
+
+AovImages GpuRenderer::read_aovs() const {
+  if (!aov_pass_) return {};
+  return aov_pass_->read();
 }
 
 Image GpuRenderer::read_display() {

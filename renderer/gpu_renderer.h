@@ -19,6 +19,7 @@
 
 #include <epoxy/gl.h>
 
+#include "renderer/aov_pass.h"
 #include "renderer/bvh.h"
 #include "renderer/error_estimate.h"
 #include "renderer/gpu_scene.h"
@@ -138,6 +139,13 @@ class GpuRenderer {
   // Each pixel's mean squared deviation of its finite samples (rgb) and the samples it has
   // taken (a; below sample_count() only with adaptive sampling).
   Image read_variance() const;
+
+  // The auxiliary images for the denoiser (renderer/aov_pass.h): when enabled, every trace pass
+  // adds the same samples to them; enabling starts them empty, an accumulation reset clears
+  // them. Off by default (the pass costs a camera ray and a hit per sample).
+  void set_aovs_enabled(bool enabled);
+  bool aovs_enabled() const { return aov_pass_ != nullptr; }
+  AovImages read_aovs() const;  // empty images when disabled
   // The tonemapped display image in [0,1] (calls update_display first).
   Image read_display();
 
@@ -160,6 +168,7 @@ class GpuRenderer {
   void collect_trace_timers(bool wait);
   GlProgram& bind_trace_pass(int samples);
   void warm_up_trace_program();
+  void trace_aov_pass(int samples);
 
   // A specialised trace program, compiled or still compiling.
   struct Variant {
@@ -202,6 +211,7 @@ class GpuRenderer {
   };
   TraceUniforms uniforms_;
   std::unique_ptr<GlProgram> tonemap_program_;
+  std::unique_ptr<AovPass> aov_pass_;  // while AOVs are enabled
   GLuint vao_ = 0;
   // Fragment path: a ping-pong pair of each; compute path: [0] only, written in place.
   GLuint accumulation_[2] = {0, 0};

@@ -100,6 +100,21 @@ struct ExrWithAttributes {
 };
 ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
                                            const std::string& alpha_channel = "");
+// One layer of a multi-layer OpenEXR file: channel "<name>.<letter>" for each letter of
+// `channels` takes the image's RGBA components in order (the unnamed layer "" gives plain R, G,
+// B, A, which every viewer shows). E.g. {"albedo", &a, "RGB"}, {"N", &n, "XYZ"}.
+struct ExrLayer {
+  std::string name;
+  const Image* image = nullptr;
+  std::string channels = "RGBA";
+  // >= 0: the layer is the one channel named `name` (no letters added), taking this component.
+  int single_component = -1;
+};
+// Writes the layers (all of one size) as float32 channels, atomically. Throws ImageError.
+void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers);
+// Reads one named layer of an OpenEXR file (layer.R/G/B or layer.X/Y/Z, layer.A if present,
+// else alpha 1). Throws ImageError naming the file, also when the layer is missing.
+Image load_exr_layer(const std::filesystem::path& path, const std::string& layer);
 
 float srgb_to_linear(float c);
 float linear_to_srgb(float c);

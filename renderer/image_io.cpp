@@ -366,10 +366,14 @@ void parse_exr_header(const std::filesystem::path& path, const std::vector<unsig
                    static_cast<int>(std::clamp<long long>(h, -1, kMaxDimension + 1)));
 }
 
-// `alpha_channel` (when given) names the channel read as alpha instead of A, and is required;
-// `attributes` (when given) receives the header's string attributes.
+// The unnamed layer (R, G, B, A or a grey channel) or, with `layer`, its channels layer.R/G/B
+// (or layer.X/Y/Z) and layer.A. `alpha_channel` (when given) names the channel read as alpha
+// instead of A, and is required; `attributes` (when given) receives the header's string
+// attributes.
 Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
-               const std::string& alpha_channel = "", ExrAttributes* attributes = nullptr) {
+               const std::string& layer = "", const std::string& alpha_channel = "",
+               ExrAttributes* attributes = nullptr) {
+  const std::string prefix = layer.empty() ? "" : layer + ".";
   ExrFile exr;
   parse_exr_header(path, bytes, exr);
   EXRHeader& header = exr.header;
@@ -390,11 +394,11 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     if (channel.x_sampling != 1 || channel.y_sampling != 1)
       fail(path, "sub-sampled OpenEXR channels are not supported");
     const std::string name = channel.name;
-    if (name == "R") index[0] = c;
-    if (name == "G") index[1] = c;
-    if (name == "B") index[2] = c;
-    if (name == (alpha_channel.empty() ? "A" : alpha_channel)) index[3] = c;
-    if (name == "Y") luminance = c;
+    if (name == prefix + "R" || (!layer.empty() && name == prefix + "X")) index[0] = c;
+    if (name == prefix + "G" || (!layer.empty() && name == prefix + "Y")) index[1] = c;
+    if (name == prefix + "B" || (!layer.empty() && name == prefix + "Z")) index[2] = c;
+    if (name == (alpha_channel.empty() ? prefix + "A" : alpha_channel)) index[3] = c;
+    if (layer.empty() && name == "Y") luminance = c;
     // Everything is read as float; UINT channels cannot be converted by tinyexr.
     if (header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF)
       header.requested_pixel_types[c] = TINYEXR_PIXELTYPE_FLOAT;
@@ -403,7 +407,9 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
   }
   if (!alpha_channel.empty() && index[3] < 0) fail(path, "OpenEXR file has no '" + alpha_channel + "' channel");
   // A single channel of any name, or Y, is grey.
-  if (header.num_channels == 1 && luminance < 0) luminance = 0;
+  if (header.num_channels == 1 && luminance < 0 && layer.empty()) luminance = 0;
+  if (!layer.empty() && (index[0] < 0 || index[1] < 0 || index[2] < 0))
+    fail(path, "OpenEXR file has no layer '" + layer + "' (channels " + prefix + "R/G/B or X/Y/Z)");
   if (index[0] < 0 || index[1] < 0 || index[2] < 0) {
     if (luminance < 0) fail(path, "OpenEXR file has neither R, G, B nor a single grey channel");
     index[0] = index[1] = index[2] = luminance;
@@ -506,30 +512,46 @@ std::vector<unsigned char> encode_hdr(const std::filesystem::path& path, const I
 }
 
 // RGBA float32 as tinyexr's SaveEXR writes it (the same bytes): channels in A, B, G, R order
-// as most viewers expect, ZIP compressed unless the image is smaller than 16x16. With
-// `alpha_channel`, the image's alpha goes to a fifth channel of that name (after R in the
-// sorted channel list OpenEXR requires, so a lowercase name) and A is 1; `attributes` are
+// as most viewers expect, ZIP compressed unless the image is smaller than 16x16.
+// Every layer's channels as float32, sorted by name as OpenEXR requires; `attributes` are
 // written as string attributes.
-std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image,
-                                      const ExrAttributes& attributes = {},
-                                      const std::string& alpha_channel = "") {
-  const size_t count = static_cast<size_t>(image.width) * image.height;
-  const int n = alpha_channel.empty() ? 4 : 5;
-  std::vector<float> planes[5];  // A, B, G, R, alpha_channel
-  for (int c = 0; c < n; ++c) {
-    planes[c].resize(count);
-    const int source = c == 4 ? 3 : 3 - c;
-    for (size_t i = 0; i < count; ++i)
-      planes[c][i] = c == 0 && n == 5 ? 1.0f : image.pixels[i * 4 + source];
+std::vector<unsigned char> encode_exr_layers(const std::filesystem::path& path,
+                                             const std::vector<ExrLayer>& layers,
+                                             const ExrAttributes& attributes = {}) {
+  struct Channel {
+    std::string name;
+    const Image* image;
+    int component;
+  };
+  std::vector<Channel> list;
+  for (const ExrLayer& layer : layers) {
+    const Image& image = *layer.image;
+    if (image.width != layers[0].image->width || image.height != layers[0].image->height ||
+        image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
+      fail(path, "the layers of an OpenEXR file must have one size");
+    if (layer.single_component >= 0) {
+      list.push_back({layer.name, &image, std::min(layer.single_component, 3)});
+      continue;
+    }
+    for (size_t c = 0; c < layer.channels.size() && c < 4; ++c)
+      list.push_back({(layer.name.empty() ? "" : layer.name + ".") + layer.channels[c], &image,
+                      static_cast<int>(c)});
   }
-  unsigned char* pointers[5];
-  EXRChannelInfo channels[5] = {};
-  int pixel_types[5], requested_types[5];
-  for (int c = 0; c < n; ++c) {
+  std::sort(list.begin(), list.end(), [](const Channel& a, const Channel& b) { return a.name < b.name; });
+  const int width = layers[0].image->width, height = layers[0].image->height;
+  const size_t count = static_cast<size_t>(width) * height;
+  const size_t n = list.size();
+  std::vector<std::vector<float>> planes(n);
+  std::vector<unsigned char*> pointers(n);
+  std::vector<EXRChannelInfo> channels(n);
+  std::vector<int> pixel_types(n, TINYEXR_PIXELTYPE_FLOAT), requested_types(n, TINYEXR_PIXELTYPE_FLOAT);
+  for (size_t c = 0; c < n; ++c) {
+    planes[c].resize(count);
+    for (size_t i = 0; i < count; ++i) planes[c][i] = list[c].image->pixels[i * 4 + list[c].component];
     pointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
-    if (c < 4) channels[c].name[0] = "ABGR"[c];
-    else std::snprintf(channels[c].name, sizeof channels[c].name, "%s", alpha_channel.c_str());
-    pixel_types[c] = requested_types[c] = TINYEXR_PIXELTYPE_FLOAT;
+    channels[c] = EXRChannelInfo{};
+    if (list[c].name.size() >= sizeof channels[c].name) fail(path, "OpenEXR channel name too long: " + list[c].name);
+    std::copy(list[c].name.begin(), list[c].name.end(), channels[c].name);
   }
   if (attributes.size() > TINYEXR_MAX_CUSTOM_ATTRIBUTES) fail(path, "too many OpenEXR attributes");
   std::vector<EXRAttribute> custom(attributes.size());
@@ -543,20 +565,20 @@ std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const I
   }
   EXRImage exr_image;
   InitEXRImage(&exr_image);
-  exr_image.num_channels = n;
-  exr_image.images = pointers;
-  exr_image.width = image.width;
-  exr_image.height = image.height;
+  exr_image.num_channels = static_cast<int>(n);
+  exr_image.images = pointers.data();
+  exr_image.width = width;
+  exr_image.height = height;
   EXRHeader header;
   InitEXRHeader(&header);
-  header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
-                                                                   : TINYEXR_COMPRESSIONTYPE_ZIP;
-  header.num_channels = n;
-  header.channels = channels;
+  header.compression_type = width < 16 && height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
+                                                       : TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_channels = static_cast<int>(n);
+  header.channels = channels.data();
   header.num_custom_attributes = static_cast<int>(custom.size());
   header.custom_attributes = custom.empty() ? nullptr : custom.data();
-  header.pixel_types = pixel_types;
-  header.requested_pixel_types = requested_types;
+  header.pixel_types = pixel_types.data();
+  header.requested_pixel_types = requested_types.data();
   unsigned char* memory = nullptr;
   const char* err = nullptr;
   const size_t size = SaveEXRImageToMemory(&exr_image, &header, &memory, &err);
@@ -564,6 +586,10 @@ std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const I
   std::vector<unsigned char> file(memory, memory + size);
   std::free(memory);
   return file;
+}
+
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
+  return encode_exr_layers(path, {ExrLayer{"", &image, "RGBA"}});
 }
 
 }  // namespace
@@ -678,6 +704,24 @@ ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::f
   return probe_bytes(path, bytes, format);
 }
 
+void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers) {
+  if (lower_extension(path) != ".exr") fail(path, "layers can only be written to an .exr file");
+  if (layers.empty() || !layers[0].image || layers[0].image->width <= 0 || layers[0].image->height <= 0)
+    fail(path, "cannot save an empty or inconsistent image");
+  const std::vector<unsigned char> file = encode_exr_layers(path, layers);
+  try {
+    write_file_atomically(path, file.data(), file.size());
+  } catch (const FileWriteError& e) {
+    fail(path, e.problem);
+  }
+}
+
+Image load_exr_layer(const std::filesystem::path& path, const std::string& layer) {
+  const std::vector<unsigned char> bytes = read_image_file(path);
+  if (check_before_decoding(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
+  return load_exr(path, bytes, layer);
+}
+
 void save_image(const std::filesystem::path& path, const Image& image) {
   const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".hdr" && ext != ".exr")
@@ -700,7 +744,7 @@ ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
   const std::vector<unsigned char> bytes = read_image_file(path);
   if (check_before_decoding(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
   ExrWithAttributes result;
-  result.image = load_exr(path, bytes, alpha_channel, &result.attributes);
+  result.image = load_exr(path, bytes, "", alpha_channel, &result.attributes);
   return result;
 }
 
@@ -710,7 +754,16 @@ void save_exr(const std::filesystem::path& path, const Image& image, const ExrAt
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
     fail(path, "cannot save an empty or inconsistent image");
-  const std::vector<unsigned char> file = encode_exr(path, image, attributes, alpha_channel);
+  // With `alpha_channel`, the image's alpha goes to a channel of that name (sorted after R, as
+  // OpenEXR requires, so a lowercase name) and A is 1.
+  std::vector<ExrLayer> layers{{"", &image, "RGBA"}};
+  Image opaque;
+  if (!alpha_channel.empty()) {
+    opaque = image;
+    for (size_t i = 3; i < opaque.pixels.size(); i += 4) opaque.pixels[i] = 1.0f;
+    layers = {{"", &opaque, "RGBA"}, {alpha_channel, &image, "", 3}};
+  }
+  const std::vector<unsigned char> file = encode_exr_layers(path, layers, attributes);
   try {
     write_file_atomically(path, file.data(), file.size());
   } catch (const FileWriteError& e) {

@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev libtinyexr-dev libgtest-dev
   libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libegl1
   xvfb xauth
+  python3-pip   # pip download of the denoiser's wheel (below)
   clang   # libFuzzer targets and the sanitizer preset (scripts/fuzz.sh, CMakePresets.json)
   slurmctld slurmd slurm-client munge   # the farm test's one-node cluster (tests/farm)
 )
@@ -43,5 +44,23 @@ if apt-cache show "$rt" >/dev/null 2>&1 &&
   sudo_cmd=()
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "$rt"
+fi
+# Intel Open Image Denoise (glint render --denoise, the editor's Denoise toggle): no registry
+# ships it for C/C++, so its own prebuilt libraries come from PyPI's pyoidn wheel, pinned by
+# hash (cmake/oidn-requirements.txt), into a cache outside the source tree and the build; CMake
+# extracts the libraries next to glint (cmake/OpenImageDenoise.cmake). x86_64 Linux only: the
+# wheel holds nothing else, and glint then says that denoising is unavailable.
+if [ "$(uname -s)" = Linux ] && [ "$(uname -m)" = x86_64 ]; then
+  oidn_cache="${GLINT_DEPS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/glint-deps}"
+  wheel="$oidn_cache/pyoidn-2.5.1.0-py3-none-manylinux2014_x86_64.whl"
+  if [ ! -f "$wheel" ]; then
+    echo "setup: downloading the pinned pyoidn wheel (Open Image Denoise 2.5.1, 88 MB) into $oidn_cache" >&2
+    mkdir -p "$oidn_cache"
+    python3 -m pip download --no-deps --require-hashes --only-binary=:all: \
+      --platform manylinux2014_x86_64 --python-version 3.8 --implementation py \
+      -r "$(dirname "$0")/../cmake/oidn-requirements.txt" -d "$oidn_cache"
+  fi
+else
+  echo "setup: Open Image Denoise ships for x86_64 Linux only: glint builds without denoising here" >&2
 fi
 echo "setup: all dependencies present" >&2

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "editor/export_job.h"
+#include "renderer/denoiser.h"
 #include "renderer/gl_context.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
@@ -146,6 +147,40 @@ TEST_F(ExportJobTest, RefusesSizesOverTheFilmMemoryLimit) {
   EXPECT_EQ(validate_export_settings(s), "");
   s.width = 8193;
   EXPECT_NE(validate_export_settings(s).find("would need"), std::string::npos);
+}
+
+// The export's Denoise option: the output is denoised on a worker and an EXR keeps the noisy
+// colour, which is exactly the plain export's (the AOV pass leaves the colour alone).
+TEST(ExportJobDenoise, DenoisedExrKeepsThePlainExportAsItsNoisyLayer) {
+  auto context = HeadlessGLContext::create();
+  const Scene scene = load_project(fs::path(GLINT_SOURCE_DIR) / "projects/default.glint");
+  const fs::path dir = fs::temp_directory_path() / ("glint-export-denoise-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ExportSettings s;
+  s.width = 24;
+  s.height = 16;
+  s.samples = 4;
+  s.output = dir / "plain.exr";
+  ExportJob plain(scene, s);
+  while (plain.step(0.01)) {
+  }
+  ASSERT_EQ(plain.state(), ExportJob::State::done) << plain.error();
+  s.output = dir / "denoised.exr";
+  s.denoise = true;
+  ExportJob denoised(scene, s);
+  while (denoised.step(0.01)) {
+  }
+  ASSERT_EQ(denoised.state(), ExportJob::State::done) << denoised.error();
+  const Image noisy_plain = load_image(dir / "plain.exr", ColorEncoding::linear);
+  if (const auto why = denoising_unavailable()) {
+    EXPECT_NE(denoised.denoise_note().find("unavailable"), std::string::npos) << denoised.denoise_note();
+    EXPECT_EQ(load_image(s.output, ColorEncoding::linear).pixels, noisy_plain.pixels);
+  } else {
+    EXPECT_NE(denoised.denoise_note().find("denoised (biased)"), std::string::npos) << denoised.denoise_note();
+    EXPECT_EQ(load_exr_layer(s.output, "noisy").pixels, noisy_plain.pixels);
+    EXPECT_NE(load_image(s.output, ColorEncoding::linear).pixels, noisy_plain.pixels);
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace

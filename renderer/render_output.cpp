@@ -1,0 +1,83 @@
+#include "renderer/render_output.h"
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "renderer/gpu_renderer.h"
+#include "renderer/shader_lib.h"
+
+namespace glint {
+
+Image render_colour(const GpuRenderer& renderer) {
+  Image image = renderer.read_accumulation();
+  for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
+  return image;
+}
+
+Image tonemapped(const Image& linear, const DisplaySettings& display) {
+  Image out = linear;
+  const int mode = display.tonemap == Tonemap::filmic ? gpu::TONEMAP_FILMIC : gpu::TONEMAP_LINEAR;
+  for (size_t i = 0; i < out.pixels.size(); i += 4) {
+    const glm::vec3 c = gpu::tonemap(glm::vec3(out.pixels[i], out.pixels[i + 1], out.pixels[i + 2]),
+                                     display.exposure, mode);
+    out.pixels[i] = c.x, out.pixels[i + 1] = c.y, out.pixels[i + 2] = c.z, out.pixels[i + 3] = 1.0f;
+  }
+  return out;
+}
+
+RenderImages read_render_images(const GpuRenderer& renderer) {
+  return {render_colour(renderer), renderer.read_aovs()};
+}
+
+RenderOutputReport save_render_images(const RenderImages& images, const DisplaySettings& display,
+                                      const std::filesystem::path& file,
+                                      const RenderOutputOptions& options, Denoiser* denoiser) {
+  RenderOutputReport report;
+  const Image& noisy = images.colour;
+  const AovImages& aovs = images.aovs;
+  const bool have_aovs = !aovs.albedo.pixels.empty();
+  std::optional<Image> denoised;
+  if (options.denoise) {
+    if (const auto why = denoising_unavailable()) {
+      report.note = "denoising is unavailable (" + *why + "): the noisy image was written";
+    } else {
+      std::unique_ptr<Denoiser> own;
+      if (!denoiser) denoiser = (own = std::make_unique<Denoiser>(options.quality)).get();
+      const auto start = std::chrono::steady_clock::now();
+      denoised = have_aovs ? denoiser->denoise(noisy, &aovs.albedo, &aovs.normal) : denoiser->denoise(noisy);
+      report.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      report.denoised = true;
+      report.device = denoiser->device_name();
+    }
+  }
+  const Image& colour = denoised ? *denoised : noisy;
+  const std::string ext = file.extension().string();
+  if (ext == ".png") {
+    save_image(file, tonemapped(colour, display));
+  } else if (ext != ".exr") {
+    save_image(file, colour);
+  } else {
+    std::vector<ExrLayer> layers{{"", &colour, "RGBA"}};
+    if (denoised) layers.push_back({"noisy", &noisy, "RGB"});
+    if (options.aovs && have_aovs) {
+      layers.push_back({"albedo", &aovs.albedo, "RGB"});
+      layers.push_back({"N", &aovs.normal, "XYZ"});
+    }
+    save_exr_layers(file, layers);
+  }
+  return report;
+}
+
+RenderOutputReport save_render_output(GpuRenderer& renderer, const DisplaySettings& display,
+                                      const std::filesystem::path& file,
+                                      const RenderOutputOptions& options, Denoiser* denoiser) {
+  if (!options.denoise && !(options.aovs && file.extension() == ".exr")) {
+    save_render(renderer, file);
+    return {};
+  }
+  return save_render_images(read_render_images(renderer), display, file, options, denoiser);
+}
+
+}  // namespace glint

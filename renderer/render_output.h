@@ -1,0 +1,63 @@
+// Writing a finished render with the optional denoised colour and auxiliary images (docs/
+// DESIGN.md, Denoising), for `glint render` and the editor's export alike. By the file's
+// extension: .png the tonemapped image, .hdr the linear radiance, .exr float32 layers.
+// Denoising is BIASED (renderer/denoiser.h): the caller labels it so.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "renderer/aov_pass.h"
+#include "renderer/denoiser.h"
+#include "renderer/image.h"
+#include "renderer/scene.h"
+
+namespace glint {
+
+class GpuRenderer;
+
+struct RenderOutputOptions {
+  // The albedo and normal images (the renderer must have had set_aovs_enabled(true) for the
+  // whole render) as the EXR layers albedo.R/G/B and N.X/Y/Z. .exr only.
+  bool aovs = false;
+  // The output is the denoised colour; an EXR keeps the noisy one as the layer noisy.R/G/B.
+  // Needs the AOVs too. Without the library, the noisy image is written and `note` says so.
+  bool denoise = false;
+  DenoiseQuality quality = DenoiseQuality::high;
+};
+
+struct RenderOutputReport {
+  bool denoised = false;
+  double denoise_seconds = 0;  // the filter's wall time, buffers included
+  std::string device;          // the OIDN device that ran it
+  std::string note;            // why it was not denoised, when asked to and it was not
+};
+
+// The render's linear colour with alpha 1 (the accumulation's alpha holds the discarded count).
+Image render_colour(const GpuRenderer& renderer);
+
+// The display image of a linear one, as the GPU's tonemap pass computes it (shaders/lib/
+// tonemap.glsl, here compiled as C++): for a denoised PNG.
+Image tonemapped(const Image& linear, const DisplaySettings& display);
+
+// What a finished render writes, read back from the GPU (on the GL thread).
+struct RenderImages {
+  Image colour;    // linear, alpha 1
+  AovImages aovs;  // empty when the renderer had no AOVs enabled
+};
+RenderImages read_render_images(const GpuRenderer& renderer);
+
+// Writes `file` (atomically) from images already read back: needs no GL, so it may run on a
+// worker thread. Throws ImageError naming the file, DenoiseError when OIDN fails. `denoiser`:
+// one to reuse, or nullptr for a new one.
+RenderOutputReport save_render_images(const RenderImages& images, const DisplaySettings& display,
+                                      const std::filesystem::path& file,
+                                      const RenderOutputOptions& options, Denoiser* denoiser = nullptr);
+
+// The same straight from the renderer; without denoising or layers exactly save_render.
+RenderOutputReport save_render_output(GpuRenderer& renderer, const DisplaySettings& display,
+                                      const std::filesystem::path& file,
+                                      const RenderOutputOptions& options,
+                                      Denoiser* denoiser = nullptr);
+
+}  // namespace glint
