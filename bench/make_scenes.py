@@ -205,7 +205,21 @@ def scenes(assets=None, out_dir=SCENES):
                quad("wall", "white", [[-2, 0, -1.3], [-2, 2, -1.3], [2, 0, -1.3], [2, 2, -1.3]])],
         environment=const_env([1, 1, 1]), max_bounces=64)
 
-    # 8. The showcase, projects/default.glint, with its asset paths rebased to bench/scenes/.
+    # 8. Solid glass: a smooth and a rough (0.3) refractive ball (ior 1.5, the rough one tinted) in
+    # the Cornell box of scene 1 with a white light; caustics come from BSDF sampling alone
+    # in both renderers (their shadow rays stop at glass), so this is a hard scene for both.
+    box = out["cornell"]
+    out["glass"] = project(
+        box["camera"], (256, 256),
+        [m for m in box["materials"] if m["name"] in ("white", "red", "green")] +
+        [mat("light", "matte", [0.78, 0.78, 0.78], emission=[15, 15, 15]),
+         mat("glass", "refractive", [1, 1, 1], roughness=0, ior=1.5),
+         mat("rough_glass", "refractive", [0.9, 0.95, 1.0], roughness=0.3, ior=1.5)],
+        spheres=[sphere("glass_ball", [370, 100, 300], 100, "glass"),
+                 sphere("rough_ball", [170, 90, 200], 90, "rough_glass")],
+        quads=box["quads"], max_bounces=12)
+
+    # 9. The showcase, projects/default.glint, with its asset paths rebased to bench/scenes/.
     with open(os.path.join(ROOT, "projects", "default.glint")) as f:
         show = json.load(f)
     rebase = lambda p: p if (p is None or os.path.isabs(p)) else os.path.relpath(

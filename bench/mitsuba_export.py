@@ -9,6 +9,13 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
 - reflective with colour exactly (1, 1, 1) and roughness < 0.03, no textures
                    -> twosided(conductor, material "none": specular reflectance 1). Glint's
                       mirror weight is Schlick F(colour, cos), which is 1 only for colour 1.
+- refractive       -> dielectric (roughness < 0.03) or roughdielectric (distribution ggx,
+                      alpha = roughness^2, visible-normal sampling), int_ior = ior,
+                      ext_ior = 1, specular_transmittance = colour, specular_reflectance 1.
+                      Not wrapped in twosided: the inside is a sphere's ball, and for a quad
+                      the side opposite cross(p1 - p0, p2 - p0), which is also the back of
+                      Mitsuba's face normal (one interface, as in Glint). Both renderers' shadow
+                      rays stop at it.
 - emission         -> area emitter. Mitsuba's area lights emit from the front side only; Glint's
                       emission leaves both sides. Quads are exported as two back-to-back
                       one-sided copies (a "sandwich"): the original, front along
@@ -37,8 +44,8 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
 - integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 3), Russian roulette
                       from depth 5 as Mitsuba's default (unbiased; Glint has none).
 
-Refused: glossy and transparent materials, rough or non-white mirrors, any texture, coverage
-(opacity < 1).
+Refused: glossy and transparent materials, rough or non-white mirrors, refractive materials
+with ior 1 (Mitsuba refuses eta = 1) or with emission, any texture, coverage (opacity < 1).
 
 Usage: mitsuba_export.py PROJECT.glint [-o OUT.exr --spp N --seed S --width W --height H]
 """
@@ -161,6 +168,13 @@ def unsupported_reasons(doc):
                 reasons.append(f"{name}: reflective with colour {m['color']} / roughness "
                                f"{m['roughness']} (only a white perfect mirror matches: Glint "
                                "uses Schlick F(colour), Mitsuba's conductors use complex IORs)")
+        elif t == "refractive":
+            if float(m["ior"]) == 1.0:
+                reasons.append(f"{name}: refractive with ior 1 (Mitsuba's dielectrics refuse "
+                               "eta = 1; the surface is invisible)")
+            if _is_emissive(m):
+                reasons.append(f"{name}: refractive and emissive (Mitsuba's area lights on a "
+                               "one-sided dielectric emit from its front only)")
         elif t != "matte":
             reasons.append(f"{name}: unknown type {t}")
         for key in ("color_texture", "emission_texture", "roughness_texture"):
@@ -267,6 +281,13 @@ def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation
 
     def bsdf(m):
         rgb = {"type": "rgb", "value": [float(c) for c in m["color"]]}
+        if m["type"] == "refractive":
+            out = {"type": "dielectric", "int_ior": float(m["ior"]), "ext_ior": 1.0,
+                   "specular_transmittance": rgb}
+            if float(m["roughness"]) >= 0.03:
+                out.update(type="roughdielectric", distribution="ggx",
+                           alpha=float(m["roughness"]) ** 2, sample_visible=True)
+            return out
         if m["type"] == "matte":
             inner = {"type": "diffuse", "reflectance": rgb}
         else:  # white perfect mirror (checked above)

@@ -47,7 +47,7 @@ import mitsuba_samplers  # noqa: E402
 import race  # noqa: E402
 
 SCENES = ["cornell", "roughness_ladder", "thin_glass", "small_emitter", "env_dof",
-          "huge_sphere_floor", "white_furnace", "showcase"]
+          "huge_sphere_floor", "white_furnace", "glass", "showcase"]
 TARGETS = [1e-1, 1e-2, 1e-3]
 REF_SEED = 1000001
 MITSUBA_REF_SEED = 2000001

@@ -148,7 +148,7 @@ int add_material(Scene& scene, MaterialType type) {
   m.name = unique_material_name(scene, to_string(type));
   m.type = type;
   if (type == MaterialType::glossy) m.roughness = 0.2f;
-  if (type == MaterialType::transparent) m.color = {1, 1, 1};
+  if (type == MaterialType::transparent || type == MaterialType::refractive) m.color = {1, 1, 1};
   scene.materials.push_back(m);
   return static_cast<int>(scene.materials.size()) - 1;
 }

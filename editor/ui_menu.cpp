@@ -131,7 +131,8 @@ void draw_main_menu(Document& doc, EditorState& state) {
     if (ImGui::MenuItem("Quad")) doc.selection = {SelectionKind::quad, add_quad(doc.scene)};
     ImGui::Separator();
     static const MaterialType kTypes[] = {MaterialType::matte, MaterialType::reflective,
-                                          MaterialType::glossy, MaterialType::transparent};
+                                          MaterialType::glossy, MaterialType::transparent,
+                                          MaterialType::refractive};
     for (MaterialType t : kTypes)
       if (ImGui::MenuItem((std::string("Material: ") + to_string(t)).c_str()))
         doc.selection = {SelectionKind::material, add_material(doc.scene, t)};

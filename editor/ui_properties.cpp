@@ -126,9 +126,9 @@ void quad_properties(Document& doc, EditorState& state, int i) {
 void material_properties(Document& doc, EditorState& state, int i) {
   Material& m = doc.scene.materials[i];
   name_field(doc, state, doc.selection);
-  static const char* const kTypes[] = {"matte", "reflective", "glossy", "transparent"};
+  static const char* const kTypes[] = {"matte", "reflective", "glossy", "transparent", "refractive"};
   int type = static_cast<int>(m.type);
-  if (ImGui::Combo("Type", &type, kTypes, 4)) m.type = static_cast<MaterialType>(type);
+  if (ImGui::Combo("Type", &type, kTypes, IM_ARRAYSIZE(kTypes))) m.type = static_cast<MaterialType>(type);
   ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
   texture_slot(doc, state, i, 0, "Colour tex");
   ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
@@ -140,7 +140,7 @@ void material_properties(Document& doc, EditorState& state, int i) {
   texture_slot(doc, state, i, 1, "Emission tex");
   ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
   texture_slot(doc, state, i, 2, "Rough. tex");
-  ImGui::DragFloat("IOR", &m.ior, 0.005f, 1.0f, 4.0f, "%.3f", kClamp);
+  ImGui::DragFloat("IOR", &m.ior, 0.005f, 0.1f, 4.0f, "%.3f", kClamp);
   ImGui::SliderFloat("Opacity", &m.opacity, 0, 1, "%.3f", kClamp);
   int users = 0;
   for (const Sphere& s : doc.scene.spheres) users += s.material == m.name;

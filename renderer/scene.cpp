@@ -26,6 +26,7 @@ const char* to_string(MaterialType type) {
     case MaterialType::reflective: return "reflective";
     case MaterialType::glossy: return "glossy";
     case MaterialType::transparent: return "transparent";
+    case MaterialType::refractive: return "refractive";
   }
   return "matte";
 }
@@ -36,7 +37,7 @@ const char* to_string(Tonemap tonemap) {
 
 std::optional<MaterialType> material_type_from_string(const std::string& text) {
   for (auto t : {MaterialType::matte, MaterialType::reflective, MaterialType::glossy,
-                 MaterialType::transparent})
+                 MaterialType::transparent, MaterialType::refractive})
     if (text == to_string(t)) return t;
   return std::nullopt;
 }

@@ -13,7 +13,7 @@
 
 namespace glint {
 
-enum class MaterialType { matte, reflective, glossy, transparent };
+enum class MaterialType { matte, reflective, glossy, transparent, refractive };
 enum class Tonemap { filmic, linear };
 
 struct Camera {

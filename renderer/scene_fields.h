@@ -79,7 +79,8 @@ template <>
 struct EnumNames<MaterialType> {
   static constexpr const char* noun = "material type";
   static constexpr std::array values = {MaterialType::matte, MaterialType::reflective,
-                                        MaterialType::glossy, MaterialType::transparent};
+                                        MaterialType::glossy, MaterialType::transparent,
+                                        MaterialType::refractive};
 };
 template <>
 struct EnumNames<Tonemap> {
@@ -167,7 +168,7 @@ struct FieldTable<Material> {
     v(field("emission_texture", &Material::emission_texture, kNullable | kTextureRef));
     v(field("roughness", &Material::roughness, unit_interval()));
     v(field("roughness_texture", &Material::roughness_texture, kNullable | kTextureRef));
-    v(field("ior", &Material::ior, at_least(1)));
+    v(field("ior", &Material::ior, greater_than(0)));
     v(field("opacity", &Material::opacity, unit_interval()));
   }
 };

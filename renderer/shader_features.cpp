@@ -87,6 +87,7 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.uses(MaterialType::reflective), "GLINT_NO_REFLECTIVE");
   define(f.uses(MaterialType::glossy), "GLINT_NO_GLOSSY");
   define(f.uses(MaterialType::transparent), "GLINT_NO_TRANSPARENT");
+  define(f.uses(MaterialType::refractive), "GLINT_NO_REFRACTIVE");
   define(f.loop_traversal, "GLINT_NO_LOOP");
   define(f.bvh_traversal, "GLINT_NO_BVH");
   define(f.has_spheres, "GLINT_NO_SPHERES");

@@ -25,7 +25,7 @@ struct ShaderFeatures {
   bool has_coverage = true;   // a used material has opacity < 1 or a colour texture with alpha
   bool has_spheres = true;    // the scene has a sphere
   bool has_quads = true;      // the scene has a quad
-  uint32_t material_types = 0xF;  // bit (1 << int(MaterialType)) per type used by a primitive
+  uint32_t material_types = 0x1F;  // bit (1 << int(MaterialType)) per type used by a primitive
   // Closest hits by the loop over all shapes, by the BVH (shaders/lib/bvh.glsl). The scene alone
   // does not decide (the render options may force one): scene_features keeps both, and the
   // renderer keeps the one it uses (renderer/bvh.h, use_bvh). With both, u_use_bvh chooses.

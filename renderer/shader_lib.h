@@ -56,6 +56,7 @@ namespace {
 #include "shaders/lib/sampling.glsl"
 #include "shaders/lib/intersect.glsl"
 #include "shaders/lib/camera.glsl"
+#include "shaders/lib/dielectric.glsl"
 #include "shaders/lib/bsdf.glsl"
 #include "shaders/lib/tonemap.glsl"
 #include "shaders/lib/error_estimate.glsl"

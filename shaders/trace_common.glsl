@@ -24,6 +24,7 @@
 #include "lib/sampling.glsl"
 #include "lib/intersect.glsl"
 #include "lib/camera.glsl"
+#include "lib/dielectric.glsl"
 #include "lib/bsdf.glsl"
 #include "lib/lights.glsl"
 #include "lib/bvh.glsl"
@@ -298,6 +299,8 @@ SurfaceMaterial surface_material(GpuMaterial gm, vec4 color_tex, vec2 uv) {
 // What a ray passes straight through at a surface, on average: the uncovered fraction, and of
 // the covered one what smooth thin glass transmits (it does not bend rays). The path tracer
 // makes the same choices at random, so shadow rays and BSDF paths agree in expectation.
+// Refractive surfaces bend every ray that crosses them, so they block shadow rays (light
+// through them arrives by BSDF sampling alone, as in Mitsuba's `path` integrator).
 vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float coverage, float cos_theta) {
   vec3 t = vec3(1.0 - coverage);
   // Most blockers are opaque: only glass needs its roughness (a texture fetch) looked up.
@@ -413,8 +416,8 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
   {
     target = pick_light((u_pick - u_env_select) / (1.0 - u_env_select));
     LightSample ls = sample_light(target, above, u);
-    if (m.type == MATERIAL_TRANSPARENT && ls.valid && dot(ls.wi, n) <= 0.0) {
-      // Rough thin glass also transmits: the light is below, seen from below.
+    if ((m.type == MATERIAL_TRANSPARENT || m.type == MATERIAL_REFRACTIVE) && ls.valid && dot(ls.wi, n) <= 0.0) {
+      // Rough glass also transmits: the light is below, seen from below.
       origin = offset_surface_point(p, -n, error_scale);
       ls = sample_light(target, origin, u);
       if (dot(ls.wi, n) >= 0.0) return vec3(0.0);
@@ -479,6 +482,11 @@ vec3 trace_path(Ray ray) {
 #endif
     if (bounces >= u_max_bounces) break;
     SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
+#if !defined(GLINT_NO_REFRACTIVE)
+    // A refractive surface's inside is a sphere's ball and the side of a quad opposite its
+    // geometric normal: a ray arriving from there leaves the material (relative index 1 / ior).
+    if (m.type == MATERIAL_REFRACTIVE && dot(hit.normal, wo) < 0.0) m.ior = 1.0 / m.ior;
+#endif
     bool delta = is_delta_material(m);
 #if !defined(GLINT_NO_LIGHT_SAMPLING)
     if (light_sampling && !delta) {
@@ -493,8 +501,10 @@ vec3 trace_path(Ray ray) {
     if (max_component(throughput) <= 0.0) break;
     // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it
     // finds is the one next-event estimation at last_p aimed at, along the same direction.
+    // (A refractive surface bends the ray and blocks shadow rays: its delta lobes are vertices
+    // with last_delta, so the light they find has weight 1.)
     ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
-    if (!(s.delta && dot(s.wi, n) < 0.0)) {
+    if (!(s.delta && dot(s.wi, n) < 0.0 && m.type == MATERIAL_TRANSPARENT)) {
       last_p = ray.origin;
       last_pdf = s.pdf;
       last_delta = s.delta;

@@ -1,6 +1,8 @@
-// The four materials of docs/DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel): evaluation,
-// sampling and pdf, consistent with each other. All directions are unit vectors in world
-// space; n is the shading normal already flipped to the side of wo. eval returns f |n.wi|.
+// The materials of docs/DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel, and the refractive
+// dielectric of dielectric.glsl): evaluation, sampling and pdf, consistent with each other. All
+// directions are unit vectors in world space; n is the shading normal already flipped to the
+// side of wo. eval returns f |n.wi|. For the refractive type, `ior` is the relative index eta of
+// dielectric.glsl (ior entering, 1 / ior leaving).
 #ifndef GLINT_BSDF_GLSL
 #define GLINT_BSDF_GLSL
 
@@ -8,8 +10,10 @@ const int MATERIAL_MATTE = 0;
 const int MATERIAL_REFLECTIVE = 1;
 const int MATERIAL_GLOSSY = 2;
 const int MATERIAL_TRANSPARENT = 3;
+const int MATERIAL_REFRACTIVE = 4;
 
-// Below this roughness, reflective and transparent surfaces are perfectly smooth (delta).
+// Below this roughness, reflective, transparent and refractive surfaces are perfectly smooth
+// (delta).
 const float DELTA_ROUGHNESS = 0.03f;
 
 struct SurfaceMaterial {
@@ -27,7 +31,10 @@ struct BsdfSample {
   bool valid;
 };
 
+// A refractive interface between equal indices (eta 1) is smooth at any roughness: every
+// microfacet passes the ray on unbent, so the lobe is a delta at -wo.
 bool is_delta_material(SurfaceMaterial m) {
+  if (m.type == MATERIAL_REFRACTIVE) return m.roughness < DELTA_ROUGHNESS || m.ior == 1.0f;
   return (m.type == MATERIAL_REFLECTIVE || m.type == MATERIAL_TRANSPARENT) &&
          m.roughness < DELTA_ROUGHNESS;
 }
@@ -64,14 +71,72 @@ vec3 sample_microfacet_normal(float alpha, mat3 frame, vec3 wo, vec2 u) {
 }
 
 // Material types that no primitive uses are compiled out of the trace shader with
-// GLINT_NO_MATTE, GLINT_NO_REFLECTIVE, GLINT_NO_GLOSSY and GLINT_NO_TRANSPARENT
-// (renderer/shader_features.h); with none defined (the C++ build) every branch is kept.
-#if !defined(GLINT_NO_REFLECTIVE) || !defined(GLINT_NO_GLOSSY) || !defined(GLINT_NO_TRANSPARENT)
+// GLINT_NO_MATTE, GLINT_NO_REFLECTIVE, GLINT_NO_GLOSSY, GLINT_NO_TRANSPARENT and
+// GLINT_NO_REFRACTIVE (renderer/shader_features.h); with none defined (the C++ build) every
+// branch is kept.
+#if !defined(GLINT_NO_REFLECTIVE) || !defined(GLINT_NO_GLOSSY) || !defined(GLINT_NO_TRANSPARENT) || \
+    !defined(GLINT_NO_REFRACTIVE)
 #define GLINT_HAS_MICROFACETS
+#endif
+
+#if !defined(GLINT_NO_REFRACTIVE)
+// The rough refractive interface: GGX reflection with the exact Fresnel term, or transmission.
+vec3 eval_rough_dielectric(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
+  float alpha = ggx_alpha(m);
+  if (dot(n, wi) > 0.0f) {
+    vec3 h = normalize(wo + wi);
+    if (!(dot(wo, h) > 0.0f)) return vec3(0.0f);
+    return vec3(fresnel_dielectric(dot(wo, h), m.ior) * microfacet_reflection(alpha, n, h, wo, wi));
+  }
+  return m.color * rough_dielectric_transmission(alpha, n, wo, wi, m.ior);
+}
+
+float pdf_rough_dielectric(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
+  float alpha = ggx_alpha(m);
+  if (dot(n, wi) > 0.0f) {
+    vec3 h = normalize(wo + wi);
+    if (!(dot(wo, h) > 0.0f)) return 0.0f;
+    return fresnel_dielectric(dot(wo, h), m.ior) * microfacet_reflection_pdf(alpha, n, h, wo);
+  }
+  return rough_dielectric_transmission_pdf(alpha, n, wo, wi, m.ior);
+}
+
+// Smooth: reflection with probability F(n.wo) at weight 1, otherwise Snell's refraction at
+// weight color / eta^2 (F = 1 beyond the critical angle: total internal reflection). Rough: a
+// visible normal h, then reflection through it with probability F(wo.h), otherwise refraction
+// through it.
+BsdfSample sample_dielectric(SurfaceMaterial m, vec3 n, vec3 wo, float u_lobe, vec2 u) {
+  BsdfSample invalid = BsdfSample(vec3(0.0f), vec3(0.0f), 0.0f, false, false);
+  float eta = m.ior;
+  if (is_delta_material(m)) {
+    float cos_o = dot(n, wo);
+    if (u_lobe < fresnel_dielectric(cos_o, eta)) {
+      return BsdfSample(reflect(-wo, n), vec3(1.0f), 0.0f, true, true);
+    }
+    vec3 t = refract_direction(wo, n, eta);
+    if (dot(t, t) == 0.0f) return invalid;  // (F is 1 there: not reached)
+    return BsdfSample(t, m.color / (eta * eta), 0.0f, true, true);
+  }
+  vec3 h = sample_microfacet_normal(ggx_alpha(m), basis_from_normal(n), wo, u);
+  vec3 wi;
+  if (u_lobe < fresnel_dielectric(dot(wo, h), eta)) {
+    wi = reflect(-wo, h);
+    if (dot(n, wi) <= 0.0f) return invalid;
+  } else {
+    wi = refract_direction(wo, h, eta);
+    if (!(dot(n, wi) < 0.0f)) return invalid;
+  }
+  float pdf = pdf_rough_dielectric(m, n, wo, wi);
+  if (!(pdf > 0.0f)) return invalid;
+  return BsdfSample(wi, eval_rough_dielectric(m, n, wo, wi) / pdf, pdf, false, true);
+}
 #endif
 
 vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
   if (is_delta_material(m)) return vec3(0.0f);
+#if !defined(GLINT_NO_REFRACTIVE)
+  if (m.type == MATERIAL_REFRACTIVE) return eval_rough_dielectric(m, n, wo, wi);
+#endif
   float cos_i = dot(n, wi);
   float cos_o = dot(n, wo);
 #if !defined(GLINT_NO_MATTE)
@@ -111,6 +176,9 @@ vec3 eval_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
 
 float pdf_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
   if (is_delta_material(m)) return 0.0f;
+#if !defined(GLINT_NO_REFRACTIVE)
+  if (m.type == MATERIAL_REFRACTIVE) return pdf_rough_dielectric(m, n, wo, wi);
+#endif
   float cos_i = dot(n, wi);
 #if !defined(GLINT_NO_MATTE)
   if (m.type == MATERIAL_MATTE) return cos_i > 0.0f ? cos_i * INV_PI : 0.0f;
@@ -142,6 +210,9 @@ float pdf_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, vec3 wi) {
 BsdfSample sample_bsdf(SurfaceMaterial m, vec3 n, vec3 wo, float u_lobe, vec2 u) {
   BsdfSample invalid = BsdfSample(vec3(0.0f), vec3(0.0f), 0.0f, false, false);
   float cos_o = dot(n, wo);
+#if !defined(GLINT_NO_REFRACTIVE)
+  if (m.type == MATERIAL_REFRACTIVE) return sample_dielectric(m, n, wo, u_lobe, u);
+#endif
 #if !defined(GLINT_NO_REFLECTIVE)
   if (m.type == MATERIAL_REFLECTIVE && m.roughness < DELTA_ROUGHNESS) {
     return BsdfSample(reflect(-wo, n), fresnel_schlick(m.color, cos_o), 0.0f, true, true);

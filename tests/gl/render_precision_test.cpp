@@ -345,11 +345,12 @@ TEST(hard_Grazing, WhiteFloorSeenAtGrazingAnglesIsTheEnvironment) {
 TEST(hard_Roughness, ZeroToOneRendersNoNaN) {
   ensure_gl_context();
   Scene s = empty_scene();
-  s.camera.position = {0, 0, 12};
+  s.camera.position = {0, 0, 13};
   s.environment.color = {0.6f, 0.7f, 0.9f};
   const float roughness[] = {0.0f, 0.01f, 0.03f, 0.031f, 0.1f, 0.5f, 1.0f};
-  const MaterialType types[] = {MaterialType::matte, MaterialType::reflective, MaterialType::glossy, MaterialType::transparent};
-  for (int t = 0; t < 4; ++t)
+  const MaterialType types[] = {MaterialType::matte, MaterialType::reflective, MaterialType::glossy,
+                                MaterialType::transparent, MaterialType::refractive};
+  for (int t = 0; t < 5; ++t)
     for (int i = 0; i < 7; ++i) {
       const std::string name = "m" + std::to_string(t) + "_" + std::to_string(i);
       s.materials.push_back({.name = name, .type = types[t], .color = {0.9f, 0.6f, 0.3f}, .roughness = roughness[i]});

@@ -102,6 +102,15 @@ TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
     s.spheres.clear();
     cases.push_back({"quads only", "GLINT_NO_SPHERES", s});
   }
+  {
+    Scene s = base;  // the glossy ball made of rough glass, the mirror ball of smooth glass
+    s.materials.push_back({.name = "glass", .type = MaterialType::refractive, .color = {1, 1, 1}});
+    s.materials.push_back({.name = "rough_glass", .type = MaterialType::refractive, .color = {1, 1, 1},
+                           .roughness = 0.3f});
+    s.spheres[0].material = "glass";
+    s.spheres[1].material = "rough_glass";
+    cases.push_back({"refractive", "GLINT_NO_GLOSSY", s});
+  }
   for (const Case& c : cases) for (SamplerKind sampler : {SamplerKind::pcg, SamplerKind::sobol}) {
     SCOPED_TRACE(std::string(c.name) + (sampler == SamplerKind::sobol ? ", sobol" : ", pcg"));
     bool specialised = false;

@@ -362,7 +362,7 @@ TEST(ProjectFile, ReportsEachProblemWithFileAndJsonPath) {
       {"/materials/1/emission/0", -1, "materials[1].emission[0]", "must be at least 0"},
       {"/materials/0/roughness", 1.5, "materials[0].roughness", "must be in [0, 1] (got 1.5)"},
       {"/materials/2/roughness", -0.1, "materials[2].roughness", "must be in [0, 1] (got -0.1)"},
-      {"/materials/0/ior", 0.9, "materials[0].ior", "must be at least 1 (got 0.9)"},
+      {"/materials/0/ior", 0, "materials[0].ior", "must be greater than 0 (got 0)"},
       {"/materials/3/opacity", 1.1, "materials[3].opacity", "must be in [0, 1] (got 1.1)"},
       {"/materials/3/opacity", -0.1, "materials[3].opacity", "must be in [0, 1]"},
       // Names and references.

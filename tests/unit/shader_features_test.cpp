@@ -21,7 +21,7 @@ Scene one_sphere(Material m) {
 TEST(ShaderFeatures, GenericHasEverythingAndNoDefines) {
   ShaderFeatures g = generic_features();
   EXPECT_TRUE(g.has_emitters && g.has_textures && g.env_textured && g.thin_lens && g.has_coverage);
-  EXPECT_EQ(g.material_types, 0xFu);
+  EXPECT_EQ(g.material_types, 0x1Fu);
   EXPECT_EQ(shader_defines(g), "");
 }
 
@@ -36,7 +36,7 @@ TEST(ShaderFeatures, EmptySceneNeedsNothing) {
             "#define GLINT_NO_EMITTERS\n#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n"
             "#define GLINT_NO_THIN_LENS\n#define GLINT_NO_COVERAGE\n#define GLINT_NO_MATTE\n"
             "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n"
-            "#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n");
+            "#define GLINT_NO_REFRACTIVE\n#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n");
 }
 
 TEST(ShaderFeatures, CornellBox) {
@@ -51,14 +51,16 @@ TEST(ShaderFeatures, CornellBox) {
                                   bit(MaterialType::glossy));
   EXPECT_EQ(shader_defines(f),
             "#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n#define GLINT_NO_THIN_LENS\n"
-            "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n");
+            "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n#define GLINT_NO_REFRACTIVE\n");
 }
 
 TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
   // Emissive lamp, textures, sky, aperture 0.03, a checker with alpha on the cut-out panel, and
-  // all four material types.
+  // the four material types other than refractive.
   ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/default.glint"));
-  EXPECT_EQ(f, generic_features());
+  ShaderFeatures expected = generic_features();
+  expected.material_types &= ~bit(MaterialType::refractive);
+  EXPECT_EQ(f, expected);
 }
 
 TEST(ShaderFeatures, TexturedSpheresHaveOpaqueTexturesOnly) {

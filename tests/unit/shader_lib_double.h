@@ -105,6 +105,7 @@ namespace {
 #undef GLINT_SAMPLING_GLSL
 #undef GLINT_INTERSECT_GLSL
 #undef GLINT_CAMERA_GLSL
+#undef GLINT_DIELECTRIC_GLSL
 #undef GLINT_BSDF_GLSL
 #undef GLINT_TONEMAP_GLSL
 #undef GLINT_LIGHTS_GLSL
@@ -125,6 +126,7 @@ double env_conditional_cdf(int row, int i) {
 #include "shaders/lib/sampling.glsl"
 #include "shaders/lib/intersect.glsl"
 #include "shaders/lib/camera.glsl"
+#include "shaders/lib/dielectric.glsl"
 #include "shaders/lib/bsdf.glsl"
 #include "shaders/lib/tonemap.glsl"
 #include "shaders/lib/lights.glsl"

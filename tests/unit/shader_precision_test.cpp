@@ -427,7 +427,7 @@ TYPED_TEST(hard_Roughness, ZeroToOneNeverGivesNaN) {
   const std::vector<double> roughness = {0.0, 1e-6, 1e-3, 0.01, 0.0299, 0.03, 0.0301, 0.031,
                                          0.05, 0.1, 0.25, 0.5, 0.75, 0.99, 1.0};
   long samples = 0;
-  for (int type : {L::kMatte, L::kReflective, L::kGlossy, L::kTransparent}) {
+  for (int type : {L::kMatte, L::kReflective, L::kGlossy, L::kTransparent, L::kRefractive}) {
     for (double rough : roughness) {
       typename L::SurfaceMaterial m(type, L::v3(0.9, 0.5, 0.1), R(rough), R(1.5));
       for (int i = 0; i < 4000; ++i) {
@@ -453,7 +453,7 @@ TYPED_TEST(hard_Roughness, ZeroToOneNeverGivesNaN) {
       }
     }
   }
-  EXPECT_EQ(samples, 4L * 15 * 4000);
+  EXPECT_EQ(samples, 5L * 15 * 4000);
 }
 
 // Roughness 0.031 (just above the delta threshold, alpha = 9.6e-4) behaves like the mirror

@@ -55,6 +55,7 @@ namespace {
     static constexpr int kReflective = NS::MATERIAL_REFLECTIVE;                                \
     static constexpr int kGlossy = NS::MATERIAL_GLOSSY;                                        \
     static constexpr int kTransparent = NS::MATERIAL_TRANSPARENT;                              \
+    static constexpr int kRefractive = NS::MATERIAL_REFRACTIVE;                                \
     static constexpr int kFilmic = NS::TONEMAP_FILMIC;                                         \
     static constexpr int kLinear = NS::TONEMAP_LINEAR;                                         \
     GLINT_SHADER_FWD(NS, offset_surface_point)                                                 \
@@ -82,6 +83,8 @@ namespace {
     GLINT_SHADER_FWD(NS, sample_cosine_hemisphere)                                             \
     GLINT_SHADER_FWD(NS, fresnel_schlick)                                                      \
     GLINT_SHADER_FWD(NS, dielectric_f0)                                                        \
+    GLINT_SHADER_FWD(NS, fresnel_dielectric)                                                   \
+    GLINT_SHADER_FWD(NS, refract_direction)                                                    \
     GLINT_SHADER_FWD(NS, ggx_distribution)                                                     \
     GLINT_SHADER_FWD(NS, smith_g1)                                                             \
     GLINT_SHADER_FWD(NS, smith_g1_over_cos)                                                    \
