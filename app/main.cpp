@@ -14,6 +14,7 @@ const char* const kHelp =
     "  glint [PROJECT.glint] [options]                            open the editor\n"
     "  glint render PROJECT.glint -o OUT.{png,hdr,exr} [options]   headless final render\n"
     "  glint render --help                                        render options\n"
+    "  glint --version                                            the version\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
@@ -22,8 +23,16 @@ const char* const kHelp =
     "  --screenshot FILE    save a PNG of the window after --frames N (default 60) or once\n"
     "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
     "                       neither offer a crash recovery nor autosave)\n"
+    "  --spp N              with --screenshot: take it once the viewport has N samples/pixel\n"
     "  --backend B          auto (the default: the faster on this device), fragment or\n"
     "                       compute: the path tracer's entry point (same image)\n"
+    "\n"
+    "Editor controls (Help > Controls in the editor lists them all):\n"
+    "  left drag: orbit    middle or Shift+left drag: pan    wheel: zoom\n"
+    "  click: select       Ctrl+click: set the focus distance there\n"
+    "  W A S D Q E: fly    F: frame the selection    Del: delete    1-4: example projects\n"
+    "  Ctrl+Z / Ctrl+Shift+Z: undo / redo    Ctrl+N/O/S: new, open, save    Ctrl+Q: quit\n"
+    "  drop an image on the window: texture of the selected object (.hdr/.exr: environment)\n"
 #else
     "\n"
     "This glint was built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`.\n"
@@ -37,6 +46,10 @@ int main(int argc, char** argv) {
   if (command == "render") return glint::run_render_command(argc - 2, argv + 2);
   if (command == "-h" || command == "--help" || command == "help") {
     std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (command == "--version" || command == "-V") {
+    std::printf("glint %s\n", GLINT_VERSION);
     return 0;
   }
 #ifdef GLINT_WITH_EDITOR

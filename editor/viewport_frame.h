@@ -18,6 +18,11 @@ struct ViewportRequest {
   RenderOptions estimator;  // how the viewport samples (not saved in the project)
   bool trace = true;        // false while an export has the device: sync and tonemap only
   int samples_per_frame = 0;  // > 0: trace exactly this many, not the frame budget's (repeatable runs)
+  // > 0: the export's film; the viewport camera frames it (editor/film_frame.h).
+  int film_width = 0, film_height = 0;
+  // The user holds a widget or a viewport drag, or moved or clicked the mouse this frame: the
+  // automatic preview does not refine then (editor/frame_budget.h).
+  bool user_active = false;
 };
 
 struct FrameStats {
@@ -25,6 +30,7 @@ struct FrameStats {
   double spp_per_second = 0;
   double ms_per_frame = 0;
   int trace_width = 0, trace_height = 0;
+  int divisor = 1;         // the viewport's framebuffer pixels per trace pixel, per axis
   bool restarted = false;  // this frame's sync reset the accumulation
   std::string gl_renderer;
   std::string scene_problem;  // why the viewport is not updating (an invalid value), or ""
