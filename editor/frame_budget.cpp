@@ -66,6 +66,15 @@ int PreviewResolution::update(const FrameBudget& budget, const PreviewFrame& f) 
     last_change_ = f.now_seconds;
     return divisor_;
   }
+  // A level too slow even for an idle frame (the first frame's guess on a slow device, or a
+  // scene that became heavier without an edit, such as a new shader variant): back to fluid.
+  // 1.5x above what refinement accepts, so that the two never alternate.
+  const int64_t level_pixels = f.full_pixels / (int64_t(divisor_) * divisor_);
+  if (divisor_ < budget.divisor() && budget.pass_seconds(level_pixels) > 1.5 * c.idle_trace_seconds) {
+    divisor_ = budget.divisor();
+    last_change_ = f.now_seconds;
+    return divisor_;
+  }
   const bool settled = !f.user_active && f.now_seconds - last_change_ >= c.idle_delay_seconds &&
                        f.samples >= c.refine_min_samples;
   if (settled && divisor_ > c.min_divisor && budget.cost() > 0) {

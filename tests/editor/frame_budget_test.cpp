@@ -139,7 +139,7 @@ TEST(PreviewResolution, IdleRefinesToFullResolutionWhereAPassFitsTheIdleBudget) 
   // llvmpipe-like (0.35 M samples/s) in a 700x750 viewport: it refines while one pass at the
   // finer level fits idle_trace_seconds, and stops there.
   PreviewSim slow(1 / 0.35e6, 700 * 750);
-  slow.frame(true, false);
+  for (int i = 0; i < 10; ++i) slow.frame(true, false);  // the budget learns the cost
   const int fluid = slow.preview.divisor();
   for (int i = 0; i < 400; ++i) slow.frame(false, false);
   const int d = slow.preview.divisor();
@@ -170,6 +170,17 @@ TEST(PreviewResolution, OnlyEditsAndRefinementChangeTheLevel) {
   for (int i = 0; i < 20; ++i) sim.frame(true, true);
   EXPECT_LE(sim.cost * double(sim.full) / (double(sim.preview.divisor()) * sim.preview.divisor()),
             sim.budget.config().trace_seconds * 1.0001);
+}
+
+TEST(PreviewResolution, ALevelTooSlowForAnIdleFrameGoesBackToFluid) {
+  // The first frame's guess (before any measurement) on a slow device in a large viewport.
+  PreviewSim sim(1 / 0.35e6, 2560 * 1600);
+  sim.frame(true, false);
+  const int guess = sim.preview.divisor();
+  for (int i = 0; i < 5; ++i) sim.frame(false, false);
+  EXPECT_GT(sim.preview.divisor(), guess);
+  const int d = sim.preview.divisor();
+  EXPECT_LE(sim.cost * double(sim.full) / (double(d) * d), 1.5 * sim.budget.config().idle_trace_seconds);
 }
 
 TEST(PreviewResolution, AtTheFluidLevelInputNeverPausesTheAccumulation) {
