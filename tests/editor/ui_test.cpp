@@ -88,7 +88,7 @@ class UiTest : public ::testing::Test {
   // Screen position of a world point in the viewport.
   ImVec2 screen(glm::vec3 p) {
     glm::vec2 v;
-    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
+    EXPECT_TRUE(project_to_viewport(shown_scene().camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
     return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
   }
   void click(ImVec2 at, bool ctrl = false) {
@@ -111,6 +111,12 @@ class UiTest : public ::testing::Test {
     return ImVec2(w->Pos.x + style.WindowPadding.x + n * (width + style.ItemSpacing.x) + width / 2,
                   w->Pos.y + w->Size.y - style.WindowPadding.y - ImGui::GetFrameHeight() / 2);
   }
+  // The scene as the viewport traces it: the camera widened to frame the film.
+  Scene shown_scene() {
+    Scene s = doc_.scene;
+    s.camera = shown_camera(doc_.scene, {state_.viewport.size.x, state_.viewport.size.y});
+    return s;
+  }
   // The status bar's text (all its pieces).
   std::string status_text() {
     std::string text;
@@ -123,11 +129,12 @@ class UiTest : public ::testing::Test {
     float best_d = 1e30f;
     for (size_t i = 0; i < doc_.scene.spheres.size(); ++i) {
       glm::vec2 v;
-      if (!project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y},
+      const Scene shown = shown_scene();
+      if (!project_to_viewport(shown.camera, {state_.viewport.size.x, state_.viewport.size.y},
                                doc_.scene.spheres[i].center, v))
         continue;
       glm::vec2 film = v / glm::vec2(state_.viewport.size.x, state_.viewport.size.y);
-      auto hit = pick(doc_.scene, film, state_.viewport.size.x / state_.viewport.size.y);
+      auto hit = pick(shown, film, state_.viewport.size.x / state_.viewport.size.y);
       float d = glm::length(film - glm::vec2(0.5f));
       if (hit && hit->what == Selection{SelectionKind::sphere, int(i)} && d < best_d) {
         best = int(i);
@@ -205,7 +212,7 @@ TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
   ASSERT_GT(before, 0);
 
   doc_.scene.display.exposure += 1.5f;  // what the exposure slider writes
-  SyncResult s = r.sync(doc_.scene, w, h);
+  SyncResult s = r.sync(shown_scene(), w, h);
   EXPECT_FALSE(s.accumulation_reset);
   EXPECT_TRUE(s.display_changed);
   EXPECT_EQ(r.sample_count(), before);
@@ -217,7 +224,7 @@ TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
   EXPECT_GT(r.sample_count(), more);
 
   doc_.scene.spheres[0].radius *= 1.1f;  // what the radius field writes
-  s = r.sync(doc_.scene, w, h);
+  s = r.sync(shown_scene(), w, h);
   EXPECT_TRUE(s.accumulation_reset);
   EXPECT_EQ(r.sample_count(), 0);
   doc_.scene.spheres[0].center.x += 0.1f;
@@ -233,9 +240,11 @@ TEST_F(UiTest, ClickSelectsCtrlClickFocusesEmptyClickDeselects) {
   EXPECT_EQ(doc_.selection, (Selection{SelectionKind::sphere, ball}));
 
   float focus_before = doc_.scene.camera.focus_distance;
-  click(screen(s.center), /*ctrl=*/true);
-  auto hit = pick(doc_.scene, {(screen(s.center).x - state_.viewport.pos.x) / state_.viewport.size.x,
-                               (screen(s.center).y - state_.viewport.pos.y) / state_.viewport.size.y},
+  // ImGui floors the mouse position: pick where the click really lands.
+  const ImVec2 at(std::floor(screen(s.center).x), std::floor(screen(s.center).y));
+  click(at, /*ctrl=*/true);
+  auto hit = pick(shown_scene(), {(at.x - state_.viewport.pos.x) / state_.viewport.size.x,
+                                  (at.y - state_.viewport.pos.y) / state_.viewport.size.y},
                   state_.viewport.size.x / state_.viewport.size.y);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(doc_.scene.camera.focus_distance, focus_distance_for(doc_.scene.camera, hit->point), 1e-3);
@@ -252,7 +261,7 @@ TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
   frame();
   const glm::vec3 c0 = doc_.scene.spheres[ball].center;
   // Grab the x handle in its middle (the handle is 0.3 of the half view height at its depth).
-  const Camera& cam = doc_.scene.camera;
+  const Camera cam = shown_scene().camera;  // the gizmo's size follows the viewport's camera
   float depth = glm::dot(c0 - cam.position, glm::normalize(cam.target - cam.position));
   float len = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
   ImVec2 a = screen(c0), b = screen(c0 + glm::vec3(len, 0, 0));
