@@ -19,6 +19,7 @@ const char* const kHelp =
     "  glint merge PART.exr... -o OUT.{exr,png,hdr}                join render parts\n"
     "  glint farm slurm PROJECT.glint --spp N --parts K -o OUT     render on a Slurm cluster\n"
     "  glint farm status -o OUT                                   the parts of a farm render\n"
+    "  glint --version                                            the version\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
@@ -27,8 +28,16 @@ const char* const kHelp =
     "  --screenshot FILE    save a PNG of the window after --frames N (default 60) or once\n"
     "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
     "                       neither offer a crash recovery nor autosave)\n"
+    "  --spp N              with --screenshot: take it once the viewport has N samples/pixel\n"
     "  --backend B          auto (the default: the faster on this device), fragment or\n"
     "                       compute: the path tracer's entry point (same image)\n"
+    "\n"
+    "Editor controls (Help > Controls in the editor lists them all):\n"
+    "  left drag: orbit    middle or Shift+left drag: pan    wheel: zoom\n"
+    "  click: select       Ctrl+click: set the focus distance there\n"
+    "  W A S D Q E: fly    F: frame the selection    Del: delete    1-4: example projects\n"
+    "  Ctrl+Z / Ctrl+Shift+Z: undo / redo    Ctrl+N/O/S: new, open, save    Ctrl+Q: quit\n"
+    "  drop an image on the window: texture of the selected object (.hdr/.exr: environment)\n"
 #else
     "\n"
     "This glint was built without the editor (GLINT_BUILD_EDITOR=OFF): only the commands above.\n"
@@ -44,6 +53,10 @@ int main(int argc, char** argv) {
   if (command == "farm") return glint::run_farm_command(argc - 2, argv + 2);
   if (command == "-h" || command == "--help" || command == "help") {
     std::fputs(kHelp, stdout);
+    return 0;
+  }
+  if (command == "--version" || command == "-V") {
+    std::printf("glint %s\n", GLINT_VERSION);
     return 0;
   }
 #ifdef GLINT_WITH_EDITOR

@@ -27,6 +27,13 @@ Selection valid_selection(const Scene& scene, Selection s) {
   }
 }
 
+// True when the scenes differ at most in the camera.
+bool same_but_camera(const Scene& a, const Scene& b) {
+  Scene t = a;
+  t.camera = b.camera;
+  return t == b;
+}
+
 fs::path current_folder() {
   std::error_code ec;
   fs::path p = fs::current_path(ec);
@@ -104,6 +111,7 @@ void Document::save(const std::filesystem::path& file) {
   committed_ = {scene, selection};
   saved_ = scene;
   path_ = file;
+  last_step_camera_only_ = false;
 }
 
 void Document::end_frame(bool interacting) {
@@ -114,6 +122,14 @@ void Document::end_frame(bool interacting) {
     return;
   }
   if (interacting) return;  // a drag in progress becomes one step when it ends
+  const bool camera_only = same_but_camera(scene, committed_.scene);
+  if (camera_only && last_step_camera_only_ && !undo_.empty()) {
+    // Continues a run of camera moves: the step before the run stays the one to undo to.
+    redo_.clear();
+    committed_ = {scene, selection};
+    return;
+  }
+  last_step_camera_only_ = camera_only;
   undo_.push_back(std::move(committed_));
   if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
   redo_.clear();
@@ -123,6 +139,7 @@ void Document::end_frame(bool interacting) {
 void Document::undo() {
   end_frame(false);  // commit a pending edit first so that undo never loses it silently
   if (undo_.empty()) return;
+  last_step_camera_only_ = false;
   redo_.push_back({scene, selection});
   committed_ = std::move(undo_.back());
   undo_.pop_back();
@@ -134,6 +151,7 @@ void Document::undo() {
 void Document::redo() {
   end_frame(false);  // a new pending edit would clear redo_; then there is nothing to redo
   if (redo_.empty()) return;
+  last_step_camera_only_ = false;
   undo_.push_back({scene, selection});
   if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
   committed_ = std::move(redo_.back());

@@ -3,7 +3,9 @@
 // Undo is derived, like the renderer's change detection: at the end of every UI frame the
 // editor calls end_frame(); if the scene differs from the last committed state and no drag is
 // in progress, the previous state becomes an undo step. No widget has to register its edits,
-// and a whole drag (mouse held on a slider or the gizmo) is one step.
+// and a whole drag (mouse held on a slider or the gizmo) is one step. A run of camera moves
+// (orbits, pans, zooms with nothing else changed) merges into one step, so that navigating
+// never buries the scene edits before it.
 #pragma once
 
 #include <filesystem>
@@ -55,6 +57,7 @@ class Document {
   Scene saved_;        // the scene as last saved or opened
   State committed_;    // the state the undo history ends at
   std::vector<State> undo_, redo_;
+  bool last_step_camera_only_ = false;  // the newest undo step only moved the camera
 };
 
 // The scene of File > New: a floor, one sphere, a grey environment, default camera.

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -132,6 +133,10 @@ bool start_session(Document& doc, EditorState& state, const EditorOptions& optio
   state.flow.recent_files = load_recent_files();
   state.flow.on_opened_or_saved = [&state](const fs::path& f) { state.flow.recent_files = add_recent_file(f); };
   state.flow.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
+  // The user's settings (preview mode, export folder); screenshot runs read but never write them.
+  state.settings = load_editor_settings();
+  state.viewport.resolution = state.settings.preview;
+  if (!screenshot_mode) state.on_settings_changed = [](const EditorSettings& s) { save_editor_settings(s); };
   if (!options.project.empty() && !open_document(doc, state, options.project)) {
     std::fprintf(stderr, "glint: %s\n", state.messages.error.c_str());
     if (screenshot_mode) ok = false;
@@ -180,6 +185,13 @@ void end_session(EditorState& state, std::unique_ptr<ViewportRenderer>& viewport
   state.export_ui.job.reset();
   viewport.reset();
   state.shader_worker.reset();
+}
+
+// Files dropped on the window since the last frame (GLFW calls back from glfwPollEvents, on
+// this thread).
+std::vector<fs::path> g_dropped;
+void on_drop(GLFWwindow*, int count, const char** paths) {
+  for (int i = 0; i < count; ++i) g_dropped.emplace_back(paths[i]);
 }
 
 enum class Poll { frame, minimised, stop };
@@ -326,6 +338,7 @@ int run_editor(const EditorOptions& options) {
   const std::optional<Windows> windows = open_windows(options, screenshot_mode);
   if (!windows) return 1;
   start_imgui(windows->main);
+  glfwSetDropCallback(windows->main, on_drop);
   int exit_code = 0;
   {
     Document doc;
@@ -342,6 +355,7 @@ int run_editor(const EditorOptions& options) {
       if (poll == Poll::stop) break;
       if (poll == Poll::minimised) continue;
       begin_imgui_frame();
+      for (const fs::path& file : std::exchange(g_dropped, {})) drop_file(doc, state, file);
       // Widgets edit the document, the viewport renders it, the export steps, undo is derived,
       // ImGui's draw data is built (editor_frame.h); then it is drawn.
       editor_frame(doc, state, *viewport);

@@ -59,4 +59,43 @@ void FrameBudget::record(int samples, int64_t pixels, double seconds, int64_t fu
   pending_frames_ = 0;
 }
 
+int PreviewResolution::update(const FrameBudget& budget, const PreviewFrame& f) {
+  const FrameBudgetConfig& c = budget.config();
+  if (divisor_ == 0 || f.scene_changed) {
+    divisor_ = budget.divisor();  // fluid while editing
+    last_change_ = f.now_seconds;
+    return divisor_;
+  }
+  // A level too slow even for an idle frame (the first frame's guess on a slow device, or a
+  // scene that became heavier without an edit, such as a new shader variant): back to fluid.
+  // 1.5x above what refinement accepts, so that the two never alternate.
+  const int64_t level_pixels = f.full_pixels / (int64_t(divisor_) * divisor_);
+  if (divisor_ < budget.divisor() && budget.pass_seconds(level_pixels) > 1.5 * c.idle_trace_seconds) {
+    divisor_ = budget.divisor();
+    last_change_ = f.now_seconds;
+    return divisor_;
+  }
+  const bool settled = !f.user_active && f.now_seconds - last_change_ >= c.idle_delay_seconds &&
+                       f.samples >= c.refine_min_samples;
+  if (settled && divisor_ > c.min_divisor && budget.cost() > 0) {
+    const int finer = std::max(c.min_divisor, divisor_ / 2);
+    const int64_t finer_pixels = f.full_pixels / (int64_t(finer) * finer);
+    if (budget.pass_seconds(finer_pixels) <= c.idle_trace_seconds) {
+      divisor_ = finer;
+      last_change_ = f.now_seconds;
+    }
+  }
+  return divisor_;
+}
+
+int PreviewResolution::samples(const FrameBudget& budget, const PreviewFrame& f, int64_t pixels) const {
+  const FrameBudgetConfig& c = budget.config();
+  const double pass = budget.pass_seconds(pixels);
+  // At the fluid level (or when a pass fits a fluid frame anyway): the frame budget.
+  if (divisor_ >= budget.divisor() || pass <= c.trace_seconds) return budget.samples(pixels);
+  if (f.user_active) return 0;  // a finer level than fluid: wait for the user
+  double k = c.idle_trace_seconds / std::max(pass, 1e-12);
+  return static_cast<int>(std::clamp(std::floor(k), 1.0, static_cast<double>(c.max_samples)));
+}
+
 }  // namespace glint

@@ -19,6 +19,10 @@ struct FrameBudgetConfig {
   int max_samples = 64;          // per frame, so that edits still feel immediate
   int max_divisor = 16;          // never coarser than 1/16 of the framebuffer per axis
   int min_divisor = 1;           // 1: full framebuffer resolution allowed
+  // The automatic preview's idle refinement (PreviewResolution below).
+  double idle_delay_seconds = 0.3;  // no edit and no input for this long: refine one step
+  double idle_trace_seconds = 0.25; // an idle frame may trace this long (the UI still answers)
+  int refine_min_samples = 4;       // samples per pixel a level shows before the next step
 };
 
 class FrameBudget {
@@ -43,6 +47,8 @@ class FrameBudget {
 
   // Seconds per pixel-sample as currently estimated (0 before the first measurement).
   double cost() const { return cost_; }
+  // Estimated seconds of one sample per pixel over `pixels` (0 before the first measurement).
+  double pass_seconds(int64_t pixels) const { return cost_ * static_cast<double>(pixels); }
 
  private:
   int wanted_divisor(int64_t full_pixels) const;
@@ -53,6 +59,38 @@ class FrameBudget {
   int divisor_ = 4;      // a cautious start until the first measurement
   int pending_ = 0;      // the divisor the estimates keep asking for
   int pending_frames_ = 0;
+};
+
+// What the automatic preview knows about one frame.
+struct PreviewFrame {
+  bool scene_changed = false;  // this frame's sync restarted the accumulation (an edit, a resize)
+  bool user_active = false;    // a widget or viewport drag is held, or the mouse moved or clicked
+  double now_seconds = 0;
+  int64_t samples = 0;         // samples per pixel accumulated at the current level
+  int64_t full_pixels = 1;     // the viewport in framebuffer pixels
+};
+
+// The automatic preview's resolution over time (docs/DESIGN.md §2). An edit drops it to the
+// frame budget's divisor, so that dragging stays fluid; when nothing is edited and the user is
+// idle, it refines by halving the divisor down to full resolution, as long as one pass at the
+// finer level fits config().idle_trace_seconds. The level changes only then: frames that edit
+// nothing (a click, hovering, exposure and tonemap, which only re-run the tonemap pass) keep
+// the level and the accumulation.
+class PreviewResolution {
+ public:
+  // 0 before the first frame.
+  int divisor() const { return divisor_; }
+  // After a sync at divisor() (or, on the first frame, at any size): the divisor for this
+  // frame. A different one than before means the caller re-syncs at it (a restart).
+  int update(const FrameBudget& budget, const PreviewFrame& frame);
+  // Samples per pixel to trace this frame at the current level (`pixels` trace pixels); 0
+  // pauses the accumulation (kept, not restarted) while the user is busy and one pass at this
+  // fine level would stall the UI.
+  int samples(const FrameBudget& budget, const PreviewFrame& frame, int64_t pixels) const;
+
+ private:
+  int divisor_ = 0;
+  double last_change_ = 0;
 };
 
 }  // namespace glint

@@ -107,6 +107,55 @@ std::vector<fs::path> remove_recent_file(const fs::path& file, const fs::path& d
   return files;
 }
 
+namespace {
+
+constexpr const char* kPreviewNames[] = {"auto", "full", "half", "quarter"};
+
+}  // namespace
+
+fs::path settings_path(const fs::path& dir) { return config_dir(dir) / "settings.json"; }
+
+EditorSettings load_editor_settings(const fs::path& dir) {
+  EditorSettings s;
+  const std::optional<std::string> text = read_text(settings_path(dir));
+  if (!text) return s;
+  const nlohmann::json j = nlohmann::json::parse(*text, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object()) return s;
+  if (auto p = j.find("preview"); p != j.end() && p->is_string())
+    for (int i = 0; i < 4; ++i)
+      if (p->get<std::string>() == kPreviewNames[i]) s.preview = static_cast<ViewportResolution>(i);
+  if (auto e = j.find("export_dir"); e != j.end() && e->is_string()) s.export_dir = e->get<std::string>();
+  return s;
+}
+
+void save_editor_settings(const EditorSettings& settings, const fs::path& dir) {
+  nlohmann::json j;
+  j["preview"] = kPreviewNames[static_cast<int>(settings.preview)];
+  j["export_dir"] = settings.export_dir.string();
+  write_text_atomic(settings_path(dir), j.dump(2) + "\n");
+}
+
+fs::path default_export_dir() {
+  std::error_code ec;
+  const char* home = std::getenv("HOME");
+  const fs::path h = home && *home ? fs::path(home) : fs::path();
+  // xdg-user-dirs writes XDG_PICTURES_DIR="$HOME/Pictures" into ~/.config/user-dirs.dirs.
+  if (!h.empty()) {
+    if (auto text = read_text(config_dir().parent_path() / "user-dirs.dirs")) {
+      const std::string key = "XDG_PICTURES_DIR=\"";
+      if (size_t at = text->find(key); at != std::string::npos) {
+        size_t end = text->find('"', at + key.size());
+        std::string v = text->substr(at + key.size(), end == std::string::npos ? std::string::npos : end - at - key.size());
+        if (v.rfind("$HOME", 0) == 0) v = h.string() + v.substr(5);
+        if (fs::is_directory(v, ec)) return v;
+      }
+    }
+    if (fs::is_directory(h / "Pictures", ec)) return h / "Pictures";
+    if (fs::is_directory(h, ec)) return h;
+  }
+  return fs::current_path(ec);
+}
+
 fs::path recovery_file_path(const fs::path& dir) { return state_dir(dir) / "recovery.glint"; }
 
 void write_recovery(const Document& doc, const fs::path& dir) {

@@ -1,4 +1,5 @@
-// State the editor keeps between runs, outside any project: recent files and crash recovery.
+// State the editor keeps between runs, outside any project: recent files, the user's settings
+// and crash recovery.
 //
 // Every function takes an optional `dir`: the folder that holds the files directly. Left empty,
 // it is the default (config_dir() or state_dir()); tests pass a temporary folder instead.
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "editor/document.h"
+#include "editor/viewport_frame.h"
 #include "renderer/scene.h"
 
 namespace glint {
@@ -31,6 +33,22 @@ std::vector<std::filesystem::path> add_recent_file(const std::filesystem::path& 
 // Removes `file` (e.g. it failed to open), saves, returns the new list.
 std::vector<std::filesystem::path> remove_recent_file(const std::filesystem::path& file,
                                                       const std::filesystem::path& dir = {});
+
+// ---- Settings the user chose, remembered between runs (settings.json in config_dir()).
+struct EditorSettings {
+  ViewportResolution preview = ViewportResolution::automatic;
+  std::filesystem::path export_dir;  // the export dialog's last folder; empty: not chosen yet
+  bool operator==(const EditorSettings&) const = default;
+};
+std::filesystem::path settings_path(const std::filesystem::path& dir = {});
+// Missing, unreadable or unknown values give the defaults (never throws).
+EditorSettings load_editor_settings(const std::filesystem::path& dir = {});
+// Best effort, atomic (a read-only home must not stop the editor).
+void save_editor_settings(const EditorSettings& settings, const std::filesystem::path& dir = {});
+// The export dialog's first folder when none was remembered: the user's Pictures folder
+// (XDG_PICTURES_DIR, else ~/Pictures when it exists), else the home folder; never the project's
+// folder, which is often a source repository.
+std::filesystem::path default_export_dir();
 
 // ---- Crash recovery. The editor writes the recovery file every few seconds while the document
 // is dirty and deletes it on a clean exit, so one found at start means the last run crashed.

@@ -69,13 +69,6 @@ glm::vec3 quad_center(const Quad& q) {
   return (q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25f;
 }
 
-// Selection after deleting item `index` of a list now `size` long: the item that moved into
-// its place, else the one before it, else nothing.
-Selection neighbour(SelectionKind kind, int index, size_t size) {
-  if (size == 0) return {};
-  return {kind, std::min(index, static_cast<int>(size) - 1)};
-}
-
 // The rotation matrix of intrinsic X-Y-Z Euler angles: R = Rx(a) Ry(b) Rz(c).
 glm::mat3 euler_xyz(glm::vec3 deg) {
   const glm::vec3 r = glm::radians(deg);
@@ -104,8 +97,18 @@ std::string unique_texture_name(const Scene& scene, const std::string& base) {
   return unique_name(scene.textures, base, "texture");
 }
 
+bool is_neutral(const Material& m) {
+  return m.type == MaterialType::matte && m.color.x == m.color.y && m.color.y == m.color.z &&
+         m.color.x > 0.05f && m.color.x < 0.95f && m.color_texture.empty() && m.emission == glm::vec3(0) &&
+         m.emission_texture.empty() && m.opacity == 1;
+}
+
 std::string default_material(Scene& scene) {
-  if (!scene.materials.empty()) return scene.materials.front().name;
+  // A neutral grey matte one: "default" if it is neutral, else the first neutral one.
+  for (const Material& m : scene.materials)
+    if (m.name == "default" && is_neutral(m)) return m.name;
+  for (const Material& m : scene.materials)
+    if (is_neutral(m)) return m.name;
   Material m;
   m.name = unique_material_name(scene, "default");
   m.type = MaterialType::matte;
@@ -222,17 +225,26 @@ int duplicate(Scene& scene, Selection what) {
   }
 }
 
+std::vector<std::string> material_users(const Scene& scene, const std::string& material) {
+  std::vector<std::string> users;
+  for (const Sphere& s : scene.spheres)
+    if (s.material == material) users.push_back("sphere " + s.name);
+  for (const Quad& q : scene.quads)
+    if (q.material == material) users.push_back("quad " + q.name);
+  return users;
+}
+
 Selection remove(Scene& scene, Selection what) {
   const size_t i = static_cast<size_t>(what.index);
   switch (what.kind) {
     case SelectionKind::sphere:
       if (!in_range(scene.spheres, what.index)) return what;
       scene.spheres.erase(scene.spheres.begin() + what.index);
-      return neighbour(what.kind, what.index, scene.spheres.size());
+      return {};
     case SelectionKind::quad:
       if (!in_range(scene.quads, what.index)) return what;
       scene.quads.erase(scene.quads.begin() + what.index);
-      return neighbour(what.kind, what.index, scene.quads.size());
+      return {};
     case SelectionKind::material: {
       if (!in_range(scene.materials, what.index)) return what;
       const std::string name = scene.materials[i].name;
@@ -241,15 +253,15 @@ Selection remove(Scene& scene, Selection what) {
       for (const Sphere& s : scene.spheres) used = used || s.material == name;
       for (const Quad& q : scene.quads) used = used || q.material == name;
       if (used) {
-        // The default is taken after the erase: the first remaining material, or a new grey
-        // one when this was the last (objects always keep a material).
+        // The default is taken after the erase: a neutral remaining material, or a new grey
+        // one (objects always keep a material).
         const std::string replacement = default_material(scene);
         for (Sphere& s : scene.spheres)
           if (s.material == name) s.material = replacement;
         for (Quad& q : scene.quads)
           if (q.material == name) q.material = replacement;
       }
-      return neighbour(what.kind, what.index, scene.materials.size());
+      return {};
     }
     case SelectionKind::texture: {
       if (!in_range(scene.textures, what.index)) return what;
@@ -260,7 +272,7 @@ Selection remove(Scene& scene, Selection what) {
         if (m.emission_texture == name) m.emission_texture.clear();
         if (m.roughness_texture == name) m.roughness_texture.clear();
       }
-      return neighbour(what.kind, what.index, scene.textures.size());
+      return {};
     }
     default: return what;  // the environment and the camera cannot be deleted
   }

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -18,8 +19,13 @@ std::string unique_quad_name(const Scene& scene, const std::string& base);
 std::string unique_material_name(const Scene& scene, const std::string& base);
 std::string unique_texture_name(const Scene& scene, const std::string& base);
 
-// The material new objects get: the first material, or a new grey matte one if there is none.
+// A neutral material: grey matte, untextured, not emitting, opaque.
+bool is_neutral(const Material& material);
+// The material new objects get: "default" or else the first neutral material, or a new grey
+// matte "default" if none is neutral (never a textured wood floor, say).
 std::string default_material(Scene& scene);
+// The objects that use a material, as "sphere NAME" / "quad NAME" (for the delete prompt).
+std::vector<std::string> material_users(const Scene& scene, const std::string& material);
 
 // Adds an object in front of the camera (at the focus distance along the view, at least 1 unit
 // away, sized to a tenth of that distance). Returns its index.
@@ -33,7 +39,8 @@ int add_texture(Scene& scene, const std::filesystem::path& file);
 // Duplicates are offset slightly so that they are visible. Return the new index.
 int duplicate(Scene& scene, Selection what);
 // Deletes; a material in use or a texture in use is replaced by the default material / no
-// texture in the objects that used it. Returns the selection to show afterwards.
+// texture in the objects that used it (the UI asks first: material_users). Returns the
+// selection afterwards: nothing, so that a second Delete never removes a neighbour.
 Selection remove(Scene& scene, Selection what);
 // Renames; references follow. Returns false (and changes nothing) if the name is empty or taken.
 bool rename(Scene& scene, Selection what, const std::string& name);

@@ -50,6 +50,11 @@ struct ViewportView {
   double target_error = 0;
   // This frame's render once the viewport has rendered (before: the last frame's).
   ViewportFrame frame;
+  // Set by draw_viewport: the film Export writes (framed in the viewport), the selection's
+  // outline in screen coordinates, and whether the user is busy (the preview waits to refine).
+  Film film;
+  std::vector<ImVec2> outline;
+  bool user_active = false;
 };
 
 // The viewport's tools and the drags in progress.
@@ -106,6 +111,13 @@ struct ExportUi {
   std::string message;
 };
 
+// Deleting a material that objects use waits for the user's answer.
+struct DeletePrompt {
+  Selection material;  // the material to delete once confirmed
+  std::vector<std::string> users;
+  bool request_open = false;
+};
+
 // Renaming in the outliner.
 struct Renaming {
   Selection item;
@@ -120,6 +132,14 @@ struct EditorState {
   Messages messages;
   ExportUi export_ui;
   Renaming renaming;
+  DeletePrompt delete_prompt;
+  bool show_controls = false;  // Help > Controls
+  bool show_about = false;     // Help > About
+
+  // Remembered between runs (editor/recent_and_recovery.h); the app saves them when this is
+  // set and they change (tests leave it empty and the user's config alone).
+  EditorSettings settings;
+  std::function<void(const EditorSettings&)> on_settings_changed;
 
   // Crash recovery: the work a crashed run left, offered once the panels exist (reset when
   // answered), and this run's autosave (none in tests and screenshot runs).
@@ -153,6 +173,11 @@ void show_viewport_image(const ViewportView& view);
 // while an export runs.
 ViewportRequest viewport_request(const EditorState& state);
 bool export_running(const EditorState& state);
+// The export dialog's first settings: the film's size, a file named after the project in the
+// remembered export folder (else the user's Pictures folder or home, never beside the project).
+ExportSettings default_export_settings(const Document& doc, const EditorState& state);
+// "about 12 s left" from the fraction done and the seconds so far.
+std::string export_eta(double progress, double elapsed_seconds);
 void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
 
 // The status bar's line, piece by piece: the frame figures, then an autosave failure (shown
@@ -163,6 +188,19 @@ struct StatusPiece {
 };
 std::vector<StatusPiece> status_line(const EditorState& state, double now_s);
 
+// Deletes a sphere, quad, texture or unused material at once; a material in use is deleted only
+// after the prompt (naming its users) is confirmed. Afterwards nothing is selected.
+void delete_item(Document& doc, EditorState& state, Selection what);
+void draw_delete_prompt(Document& doc, EditorState& state);
+// The settings changed: tells on_settings_changed.
+void settings_changed(EditorState& state);
+// The Help menu's windows: the controls sheet and About.
+void draw_help_windows(EditorState& state);
+// A file dropped on the window: a project opens (asking about unsaved changes), an .hdr or
+// .exr becomes the environment, another image the colour texture of the selected object's
+// material (or of the selected material). Returns what it did, for the status bar.
+std::string drop_file(Document& doc, EditorState& state, const std::filesystem::path& file);
+
 // Document actions (menus, keys and tests). request_action asks about unsaved changes first.
 void request_action(Document& doc, EditorState& state, DocAction action, std::filesystem::path path = {});
 bool open_document(Document& doc, EditorState& state, const std::filesystem::path& file);
@@ -171,6 +209,9 @@ void new_document(Document& doc, EditorState& state);
 // Asks for a file (native dialog, else the typed-path prompt) and applies it.
 void choose_file(Document& doc, EditorState& state, FilePurpose purpose);
 void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, const std::string& file);
+// Where a file chooser starts: a folder for opening and for images (never a pre-filled
+// project file name), the current file for saving and exporting.
+std::string file_dialog_start(const Document& doc, const EditorState& state, FilePurpose purpose);
 void show_error(EditorState& state, const std::string& message);
 void show_message(EditorState& state, const std::string& message);
 
@@ -182,6 +223,11 @@ std::filesystem::path find_projects_dir(const std::vector<std::filesystem::path>
 // Viewport maths (ui_viewport.cpp): world point -> viewport pixel (relative to its top-left);
 // false when behind the camera.
 bool project_to_viewport(const Camera& camera, glm::vec2 viewport_size, glm::vec3 p, glm::vec2& out);
+// The camera the viewport shows: the scene's, widened to frame the film (editor/film_frame.h).
+Camera shown_camera(const Scene& scene, glm::vec2 viewport_size);
+// The outline of a selected sphere (its silhouette circle, 64 points) or quad (its 4 corners)
+// in viewport pixels; empty when nothing outlinable is selected or it is behind the camera.
+std::vector<glm::vec2> selection_outline(const Scene& scene, Selection sel, glm::vec2 viewport_size);
 // Selects (or focuses, with the focus tool or Ctrl) at a viewport position in [0,1]^2.
 void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focus);
 

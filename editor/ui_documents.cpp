@@ -122,10 +122,27 @@ bool save_document(Document& doc, EditorState& state, bool save_as) {
   }
 }
 
+std::string file_dialog_start(const Document& doc, const EditorState& state, FilePurpose purpose) {
+  std::error_code ec;
+  const fs::path folder = doc.path().empty() ? fs::current_path(ec) : fs::absolute(doc.path(), ec).parent_path();
+  switch (purpose) {
+    case FilePurpose::save_project_as:
+      return doc.path().empty() ? (folder / "untitled.glint").string() : doc.path().string();
+    case FilePurpose::export_output: return state.export_ui.settings.output.string();
+    case FilePurpose::texture_slot:
+    case FilePurpose::add_texture:
+    case FilePurpose::environment:
+      // A folder, never the project file: images usually sit in its assets folder.
+      if (fs::is_directory(folder / "assets", ec)) return (folder / "assets").string() + "/";
+      return folder.string() + "/";
+    case FilePurpose::open_project: return folder.string() + "/";
+  }
+  return folder.string() + "/";
+}
+
 void choose_file(Document& doc, EditorState& state, FilePurpose purpose) {
   DialogSpec spec = dialog_spec(purpose);
-  std::string start = doc.path().empty() ? fs::current_path().string() + "/" : doc.path().string();
-  if (purpose == FilePurpose::export_output) start = state.export_ui.settings.output.string();
+  const std::string start = file_dialog_start(doc, state, purpose);
   if (state.flow.native_dialogs) {
     auto chosen = spec.save ? native_save_dialog(spec.title, start, spec.filters, spec.description)
                             : native_open_dialog(spec.title, start, spec.filters, spec.description);
@@ -269,6 +286,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
     if (ImGui::Button("OK", ImVec2(90, 0)) || enter_closes) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
+  draw_delete_prompt(doc, state);
 }
 
 fs::path example_project(const EditorState& state, int number) {

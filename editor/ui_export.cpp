@@ -1,10 +1,35 @@
 // The export dialog: size, samples or time, format; progress bar and cancel while it runs.
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
 #include "editor/ui.h"
 
 namespace glint {
+
+ExportSettings default_export_settings(const Document& doc, const EditorState& state) {
+  ExportSettings s;
+  // The remembered folder, else Pictures or home: beside the project would often be inside a
+  // source repository, where a render does not belong.
+  std::filesystem::path dir = state.settings.export_dir;
+  std::error_code ec;
+  if (dir.empty() || !std::filesystem::is_directory(dir, ec)) dir = default_export_dir();
+  s.output = dir / (doc.path().empty() ? std::string("render.png") : doc.path().stem().string() + ".png");
+  s.width = doc.scene.film.width;
+  s.height = doc.scene.film.height;
+  return s;
+}
+
+std::string export_eta(double progress, double elapsed_seconds) {
+  if (!(progress > 0.01) || !(elapsed_seconds > 0.5)) return "estimating time left";
+  const double left = elapsed_seconds * (1 - progress) / progress;
+  char text[64];
+  if (left < 60) std::snprintf(text, sizeof text, "about %.0f s left", std::ceil(left));
+  else if (left < 3600) std::snprintf(text, sizeof text, "about %d min %02d s left", int(left) / 60, int(left) % 60);
+  else std::snprintf(text, sizeof text, "about %d h %02d min left", int(left) / 3600, int(left) / 60 % 60);
+  return text;
+}
 
 bool export_running(const EditorState& state) {
   return state.export_ui.job && state.export_ui.job->state() == ExportJob::State::running;
@@ -31,17 +56,14 @@ void step_export(EditorState& state, double slice_seconds) {
 void draw_export_dialog(Document& doc, EditorState& state) {
   if (!state.export_ui.show) return;
   ExportSettings& s = state.export_ui.settings;
-  if (s.output.empty()) {
-    // A first guess beside the project, named after it.
-    auto dir = doc.path().empty() ? std::filesystem::current_path() : doc.path().parent_path();
-    s.output = dir / (doc.path().empty() ? std::string("render.png") : doc.path().stem().string() + ".png");
-    s.width = doc.scene.film.width;
-    s.height = doc.scene.film.height;
-  }
-  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  if (s.output.empty()) s = default_export_settings(doc, state);
+  // Auto-sized: the settings, the progress with its ETA, Cancel and the result always show
+  // without scrolling.
+  ImGui::SetNextWindowSizeConstraints(ImVec2(520, 0), ImVec2(FLT_MAX, FLT_MAX));
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (!ImGui::Begin("Export render", &state.export_ui.show, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
+  if (!ImGui::Begin("Export render", &state.export_ui.show,
+                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::End();
     return;
   }
@@ -61,6 +83,9 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   if (ImGui::SmallButton("Viewport aspect")) {
     s.height = std::max(1, int(s.width * state.viewport.size.y / std::max(1.0f, state.viewport.size.x) + 0.5f));
   }
+  if (int64_t(s.width) * doc.scene.film.height != int64_t(s.height) * doc.scene.film.width)
+    ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "Not the film's aspect (%dx%d): the viewport's frame shows the film.",
+                       doc.scene.film.width, doc.scene.film.height);
   int budget = s.use_time ? 1 : 0;
   ImGui::RadioButton("Samples", &budget, 0);
   ImGui::SameLine();
@@ -93,9 +118,10 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   if (running) {
     ExportJob& job = *state.export_ui.job;
     char overlay[96];
-    std::snprintf(overlay, sizeof overlay, "%lld spp, %.1f s", static_cast<long long>(job.samples()),
-                  job.elapsed_seconds());
+    std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
+                  static_cast<long long>(job.samples()), job.elapsed_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
+    ImGui::TextUnformatted(export_eta(job.progress(), job.elapsed_seconds()).c_str());
     if (ImGui::Button("Cancel", ImVec2(120, 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";
@@ -107,6 +133,11 @@ void draw_export_dialog(Document& doc, EditorState& state) {
         s.estimator = state.viewport.estimator;
         state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker, state.trace_backend);
         state.export_ui.message.clear();
+        const std::filesystem::path folder = std::filesystem::absolute(s.output).parent_path();
+        if (state.settings.export_dir != folder) {  // remembered for the next session
+          state.settings.export_dir = folder;
+          settings_changed(state);
+        }
       } catch (const std::exception& e) {
         show_error(state, std::string("Cannot export: ") + e.what());
       }

@@ -2,7 +2,11 @@
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
 #include <GLFW/glfw3.h>  // key codes only: the GLFW backend fills io.KeysDown by GLFW key
 
+#include <algorithm>
+#include <cmath>
+
 #include "editor/camera_control.h"
+#include "editor/material_fields.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 
@@ -28,17 +32,20 @@ bool selection_bounds(const Scene& scene, Selection sel, glm::vec3& center, floa
   return false;
 }
 
+// The selection fills about 60% of the film's shorter side (frame() alone fits it exactly to
+// the view height, which leaves no room around it and crops a portrait film's sides).
+constexpr float kFrameMargin = 1.6f;
+
 void frame_selection(Document& doc) {
   glm::vec3 c;
   float r;
-  if (selection_bounds(doc.scene, doc.selection, c, r)) frame(doc.scene.camera, c, r);
-}
-
-void delete_selection(Document& doc) {
-  SelectionKind k = doc.selection.kind;
-  if (k == SelectionKind::sphere || k == SelectionKind::quad || k == SelectionKind::material ||
-      k == SelectionKind::texture)
-    doc.selection = remove(doc.scene, doc.selection);
+  if (!selection_bounds(doc.scene, doc.selection, c, r)) return;
+  const Film& f = doc.scene.film;
+  const float aspect = float(std::max(f.width, 1)) / float(std::max(f.height, 1));
+  const float h = std::tan(glm::radians(doc.scene.camera.vfov_deg) * 0.5f);
+  // A portrait film's horizontal half-angle is the smaller one: fit the sphere to it.
+  const float narrow = aspect < 1 ? std::atan(h * aspect) / std::atan(h) : 1.0f;
+  frame(doc.scene.camera, c, r * kFrameMargin / narrow);
 }
 
 }  // namespace
@@ -60,7 +67,7 @@ void handle_shortcuts(Document& doc, EditorState& state) {
     if (key_pressed(GLFW_KEY_Q)) request_action(doc, state, DocAction::quit);
     return;
   }
-  if (key_pressed(ImGui::GetKeyIndex(ImGuiKey_Delete))) delete_selection(doc);
+  if (key_pressed(ImGui::GetKeyIndex(ImGuiKey_Delete))) delete_item(doc, state, doc.selection);
   if (key_pressed(GLFW_KEY_F)) frame_selection(doc);
   for (int n = 1; n <= 4; ++n)
     if (key_pressed(GLFW_KEY_1 + n - 1)) {
@@ -85,6 +92,7 @@ void handle_shortcuts(Document& doc, EditorState& state) {
 }
 
 void draw_main_menu(Document& doc, EditorState& state) {
+  draw_help_windows(state);
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New", "Ctrl+N")) request_action(doc, state, DocAction::new_document);
@@ -123,19 +131,16 @@ void draw_main_menu(Document& doc, EditorState& state) {
                   doc.selection.kind != SelectionKind::environment;
     if (ImGui::MenuItem("Duplicate", nullptr, false, object))
       doc.selection.index = duplicate(doc.scene, doc.selection);
-    if (ImGui::MenuItem("Delete", "Del", false, object)) delete_selection(doc);
+    if (ImGui::MenuItem("Delete", "Del", false, object)) delete_item(doc, state, doc.selection);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Add")) {
     if (ImGui::MenuItem("Sphere")) doc.selection = {SelectionKind::sphere, add_sphere(doc.scene)};
     if (ImGui::MenuItem("Quad")) doc.selection = {SelectionKind::quad, add_quad(doc.scene)};
     ImGui::Separator();
-    static const MaterialType kTypes[] = {MaterialType::matte, MaterialType::reflective,
-                                          MaterialType::glossy, MaterialType::transparent,
-                                          MaterialType::refractive};
-    for (MaterialType t : kTypes)
-      if (ImGui::MenuItem((std::string("Material: ") + to_string(t)).c_str()))
-        doc.selection = {SelectionKind::material, add_material(doc.scene, t)};
+    for (const MaterialTypeInfo& t : kMaterialTypes)
+      if (ImGui::MenuItem((std::string("Material: ") + t.name).c_str()))
+        doc.selection = {SelectionKind::material, add_material(doc.scene, t.type)};
     if (ImGui::MenuItem("Texture from file...")) choose_file(doc, state, FilePurpose::add_texture);
     ImGui::EndMenu();
   }
@@ -144,6 +149,11 @@ void draw_main_menu(Document& doc, EditorState& state) {
     ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.tools.focus_tool);
     if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
     if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    ImGui::MenuItem("Controls", nullptr, &state.show_controls);
+    ImGui::MenuItem("About Glint", nullptr, &state.show_about);
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();

@@ -38,7 +38,7 @@ void row(Document& doc, EditorState& state, Selection item, const std::string& n
         std::snprintf(state.renaming.buffer, sizeof state.renaming.buffer, "%s", name.c_str());
       }
       if (ImGui::MenuItem("Duplicate")) doc.selection = {item.kind, duplicate(doc.scene, item)};
-      if (ImGui::MenuItem("Delete")) doc.selection = remove(doc.scene, item);
+      if (ImGui::MenuItem("Delete")) delete_item(doc, state, item);
       ImGui::EndPopup();
     }
   }
@@ -65,7 +65,7 @@ void draw_outliner(Document& doc, EditorState& state) {
   ImGui::BeginDisabled(!object);
   if (ImGui::Button("Duplicate", ImVec2(w, 0))) doc.selection = {doc.selection.kind, duplicate(s, doc.selection)};
   ImGui::SameLine();
-  if (ImGui::Button("Delete", ImVec2(w, 0))) doc.selection = remove(s, doc.selection);
+  if (ImGui::Button("Delete", ImVec2(w, 0))) delete_item(doc, state, doc.selection);
   ImGui::EndDisabled();
   ImGui::Separator();
 

@@ -2,6 +2,7 @@
 // camera), and below it the display settings, which only re-run the tonemap pass.
 #include <cstdio>
 
+#include "editor/material_fields.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "renderer/scene_fields.h"
@@ -27,13 +28,19 @@ void section_title(const char* text) {
   ImGui::Separator();
 }
 
+// The hover help of the item just drawn (every property has one).
+void tip(const char* text) {
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
+}
+
 ImTextureID tex_id(unsigned t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t)); }
 
 void name_field(Document& doc, EditorState& state, Selection sel) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%s", name_of(doc.scene, sel).c_str());
-  if (ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue) &&
-      !rename(doc.scene, sel, buf))
+  const bool entered = ImGui::InputText("Name", buf, sizeof buf, ImGuiInputTextFlags_EnterReturnsTrue);
+  tip("The name in the outliner and the project file; Enter renames (references follow).");
+  if (entered && !rename(doc.scene, sel, buf))
     show_message(state, std::string("The name '") + buf + "' is empty or taken");
 }
 
@@ -58,10 +65,12 @@ bool name_combo(const char* label, std::string& value, const List& items, bool a
 
 void material_combo(Document& doc, std::string& material) {
   name_combo("Material", material, doc.scene.materials, false);
+  tip("The material this object is made of.");
   int m = find_material(doc.scene, material);
   if (m >= 0) {
     ImGui::SameLine();
     if (ImGui::SmallButton("Edit")) doc.selection = {SelectionKind::material, m};
+    tip("Select the material to edit it.");
   }
 }
 
@@ -77,7 +86,12 @@ void texture_slot(Document& doc, EditorState& state, int material, int slot, con
   ImGui::BeginGroup();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110);
   name_combo(label, value, doc.scene.textures, true);
-  if (ImGui::SmallButton("File...")) {
+  tip(slot == 0 ? "An image that replaces the colour (its alpha is coverage)."
+      : slot == 1 ? "An image that multiplies the emission."
+                  : "An image whose first channel replaces the roughness.");
+  const bool file = ImGui::SmallButton("File...");
+  tip("Choose an image file for this slot (or drop one on the window).");
+  if (file) {
     state.flow.slot_material = material;
     state.flow.slot_index = slot;
     choose_file(doc, state, FilePurpose::texture_slot);
@@ -90,7 +104,9 @@ void sphere_properties(Document& doc, EditorState& state, int i) {
   Sphere& s = doc.scene.spheres[i];
   name_field(doc, state, doc.selection);
   ImGui::DragFloat3("Centre", &s.center.x, 0.01f);
+  tip("World position of the centre (drag, or Ctrl+click to type).");
   ImGui::DragFloat("Radius", &s.radius, 0.005f, 1e-4f, 1e6f, "%.4f", kClamp);
+  tip("Radius in world units.");
   material_combo(doc, s.material);
 }
 
@@ -101,14 +117,18 @@ void quad_properties(Document& doc, EditorState& state, int i) {
   section_title("Placement");
   QuadPlacement p = quad_placement(q);
   bool changed = ImGui::DragFloat3("Centre", &p.center.x, 0.01f);
+  tip("World position of the quad's centre.");
   changed |= ImGui::DragFloat2("Size", &p.size.x, 0.01f, 1e-3f, 1e6f, "%.3f", kClamp);
+  tip("Lengths of the edges p0-p2 (x) and p0-p1 (y).");
   changed |= ImGui::DragFloat3("Rotation", &p.rotation_deg.x, 0.5f, -360, 360, "%.1f deg");
+  tip("Orientation as X-Y-Z Euler angles in degrees.");
   if (changed) set_quad_placement(q, p);
   if (ImGui::TreeNode("Corners")) {
     for (int c = 0; c < 4; ++c) {
       char label[16];
       std::snprintf(label, sizeof label, "p%d", c);
       ImGui::DragFloat3(label, &q.corners[c].x, 0.01f);
+      tip("A corner in world coordinates (editing one may make the quad non-rectangular).");
     }
     ImGui::TextDisabled("p3 is opposite p0");
     ImGui::TreePop();
@@ -118,6 +138,7 @@ void quad_properties(Document& doc, EditorState& state, int i) {
       char label[16];
       std::snprintf(label, sizeof label, "uv%d", c);
       ImGui::DragFloat2(label, &q.uvs[c].x, 0.01f);
+      tip("Texture coordinate at this corner.");
     }
     ImGui::TreePop();
   }
@@ -126,28 +147,53 @@ void quad_properties(Document& doc, EditorState& state, int i) {
 void material_properties(Document& doc, EditorState& state, int i) {
   Material& m = doc.scene.materials[i];
   name_field(doc, state, doc.selection);
-  static const char* const kTypes[] = {"matte", "reflective", "glossy", "transparent", "refractive"};
-  int type = static_cast<int>(m.type);
-  if (ImGui::Combo("Type", &type, kTypes, IM_ARRAYSIZE(kTypes))) m.type = static_cast<MaterialType>(type);
-  ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
-  texture_slot(doc, state, i, 0, "Colour tex");
-  ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
-  float strength = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
-  if (strength > 0 && ImGui::DragFloat("Strength", &strength, 0.05f, 1e-3f, 1e4f, "%.3f", kClamp)) {
-    float old = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
-    m.emission *= strength / old;  // scales the colour, keeping its hue
+  const MaterialTypeInfo* info = material_type_info(m.type);
+  if (ImGui::BeginCombo("Type", info ? info->name : to_string(m.type))) {
+    for (const MaterialTypeInfo& t : kMaterialTypes) {
+      if (ImGui::Selectable(t.name, t.type == m.type)) m.type = t.type;
+      tip(t.summary);
+    }
+    ImGui::EndCombo();
   }
-  texture_slot(doc, state, i, 1, "Emission tex");
-  ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
-  texture_slot(doc, state, i, 2, "Rough. tex");
-  ImGui::DragFloat("IOR", &m.ior, 0.005f, 0.1f, 4.0f, "%.3f", kClamp);
-  ImGui::SliderFloat("Opacity", &m.opacity, 0, 1, "%.3f", kClamp);
+  tip(info ? info->summary : "The material model.");
+  // Only the fields this type reads (editor/material_fields.h).
+  if (uses_field(m.type, kFieldColour)) {
+    ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
+    tip("Linear RGB colour (albedo, reflectance or tint, see Type).");
+    texture_slot(doc, state, i, 0, "Colour tex");
+  }
+  if (uses_field(m.type, kFieldEmission)) {
+    ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+    tip("Emitted radiance (linear RGB, may exceed 1): black for no light.");
+    float strength = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
+    if (strength > 0 && ImGui::DragFloat("Strength", &strength, 0.05f, 1e-3f, 1e4f, "%.3f", kClamp)) {
+      float old = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
+      m.emission *= strength / old;  // scales the colour, keeping its hue
+    }
+    if (strength > 0) tip("Scales the emission, keeping its hue.");
+    texture_slot(doc, state, i, 1, "Emission tex");
+  }
+  if (uses_field(m.type, kFieldRoughness)) {
+    ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
+    tip("Microfacet roughness (GGX alpha = roughness^2): 0 is perfectly smooth.");
+    texture_slot(doc, state, i, 2, "Rough. tex");
+  }
+  if (uses_field(m.type, kFieldIor)) {
+    ImGui::DragFloat("IOR", &m.ior, 0.005f, 0.1f, 4.0f, "%.3f", kClamp);
+    tip("Index of refraction: sets the Fresnel reflectance (1.5 is glass).");
+  }
+  if (uses_field(m.type, kFieldOpacity)) {
+    ImGui::SliderFloat("Opacity", &m.opacity, 0, 1, "%.3f", kClamp);
+    tip("Coverage: below 1, rays pass through the surface with that probability (cut-outs).");
+  }
   int users = 0;
   for (const Sphere& s : doc.scene.spheres) users += s.material == m.name;
   for (const Quad& q : doc.scene.quads) users += q.material == m.name;
   ImGui::TextDisabled("used by %d object(s)", users);
   // Assign to the previously selected object is awkward without it: offer the objects here.
-  if (ImGui::BeginCombo("Assign to", "choose an object")) {
+  const bool assign = ImGui::BeginCombo("Assign to", "choose an object");
+  tip("Give this material to an object.");
+  if (assign) {
     for (Sphere& s : doc.scene.spheres)
       if (ImGui::Selectable(("sphere " + s.name).c_str(), s.material == m.name)) s.material = m.name;
     for (Quad& q : doc.scene.quads)
@@ -171,13 +217,18 @@ void environment_properties(Document& doc, EditorState& state) {
   if (textured) {
     ImGui::TextWrapped("HDR map: %s", e.texture.c_str());
     if (ImGui::SmallButton("Use a colour instead")) e.texture.clear();
+    tip("Drop the map and light the scene with a uniform colour.");
     ImGui::SameLine();
   } else {
     ImGui::ColorEdit3("Colour", &e.color.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+    tip("Radiance of a uniform sky (linear RGB).");
   }
   if (ImGui::SmallButton(textured ? "Other HDR file..." : "HDR file...")) choose_file(doc, state, FilePurpose::environment);
+  tip("An equirectangular .hdr or .exr map (or drop one on the window).");
   ImGui::DragFloat("Intensity", &e.intensity, 0.01f, 0, 1e4f, "%.3f", kClamp);
+  tip("Multiplies the environment's radiance.");
   ImGui::DragFloat("Rotation", &e.rotation_deg, 0.5f, -360, 360, "%.1f deg", kClamp);
+  tip("Turns the map about the vertical axis.");
 }
 
 // The estimator: not part of the scene, so no undo step and no save; a change restarts the
@@ -186,18 +237,26 @@ void sampling_properties(EditorState& state) {
   RenderOptions& o = state.viewport.estimator;
   section_title("Sampling");
   ImGui::Checkbox("Light sampling", &o.light_sampling);
+  tip("Next-event estimation: sample emitters directly (less noise, same answer).");
   ImGui::Checkbox("Environment sampling", &o.environment_sampling);
+  tip("Sample the environment map by its brightness (less noise, same answer).");
   ImGui::Checkbox("Russian roulette", &o.russian_roulette);
+  tip("End dim paths at random, unbiased: faster samples, a little more noise each.");
   bool sobol = o.sampler == SamplerKind::sobol;
   if (ImGui::Checkbox("Sobol sampler", &sobol)) o.sampler = sobol ? SamplerKind::sobol : SamplerKind::pcg;
+  tip("Quasi-random (Owen-scrambled Sobol) samples instead of independent ones.");
   bool clamp = o.clamp > 0;
   if (ImGui::Checkbox("Clamp fireflies (biased)", &clamp)) o.clamp = clamp ? 10.0f : 0.0f;
+  tip("Caps each path's luminance: fewer bright specks, but a darker, wrong image.");
   if (clamp) ImGui::DragFloat("Clamp luminance", &o.clamp, 0.1f, 0.01f, 1e6f, "%.2f", kClamp);
+  if (clamp) tip("The largest luminance one path may add.");
   ImGui::Checkbox("Adaptive sampling", &o.adaptive);
+  tip("After 16 samples, pixels whose estimated error is already low skip passes (every 8th\npass samples all), so samples go where the noise is.");
   // The viewport pauses at this estimated relMSE; 0: never.
   float target = static_cast<float>(state.viewport.target_error);
   if (ImGui::InputFloat("Target error", &target, 0, 0, "%.2e") && target >= 0)
     state.viewport.target_error = target;
+  tip("Pause the viewport once the estimated relMSE is at most this (0: never).");
   if (clamp) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Clamping darkens bright highlights: the image no longer converges to the right answer.");
@@ -208,20 +267,28 @@ void sampling_properties(EditorState& state) {
 void camera_properties(Document& doc) {
   Camera& c = doc.scene.camera;
   ImGui::DragFloat3("Position", &c.position.x, 0.01f);
+  tip("Where the camera is (world units).");
   ImGui::DragFloat3("Target", &c.target.x, 0.01f);
+  tip("The point it looks at (orbit turns around it).");
   ImGui::SliderFloat("Field of view", &c.vfov_deg, 1, 150, "%.1f deg", kClamp);
+  tip("Vertical field of view of the film (the frame in the viewport).");
   ImGui::DragFloat("Aperture", &c.aperture_radius, 0.001f, 0, 10, "%.4f", kClamp);
+  tip("Lens radius: 0 is a pinhole (all sharp); larger blurs what is off the focus distance.");
   ImGui::DragFloat("Focus distance", &c.focus_distance, 0.01f, 1e-3f, 1e6f, "%.3f", kClamp);
+  tip("Distance along the view that is sharp (Ctrl+click in the viewport sets it).");
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("Ctrl+click in the viewport focuses there");
   ImGui::PopStyleColor();
   section_title("Render");
   ImGui::SliderInt("Max bounces", &doc.scene.render.max_bounces, 0, 64, "%d", kClamp);
+  tip("Longest path, in scattering events (0: emitters and the sky only).");
   int seed = static_cast<int>(doc.scene.render.seed);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) doc.scene.render.seed = static_cast<uint32_t>(seed);
+  tip("Random seed: another seed gives other noise, the same expected image.");
   int film[2] = {doc.scene.film.width, doc.scene.film.height};
   if (ImGui::InputInt2("Film size", film) && film[0] > 0 && film[1] > 0)
     doc.scene.film = {film[0], film[1]};
+  tip("The size Export writes; the viewport shows this frame (the rest dimmed).");
 }
 
 }  // namespace
@@ -270,13 +337,22 @@ void draw_properties(Document& doc, EditorState& state) {
   section_title("Display");
   // Exposure and tonemap only re-run the tonemap pass (the renderer's display digest).
   ImGui::SliderFloat("Exposure", &s.display.exposure, -10, 10, "%.2f stops", kClamp);
+  tip("Brightness in stops (re-runs only the tonemap: the samples are kept).");
   int tonemap = static_cast<int>(s.display.tonemap);
   static const char* const kTonemaps[] = {"filmic", "linear"};
   if (ImGui::Combo("Tonemap", &tonemap, kTonemaps, 2)) s.display.tonemap = static_cast<Tonemap>(tonemap);
+  tip("Filmic rolls highlights off; linear clips at 1 (the samples are kept).");
   int res = static_cast<int>(state.viewport.resolution);
   static const char* const kResolutions[] = {"auto (fluid UI)", "full", "1/2", "1/4"};
-  if (ImGui::Combo("Preview", &res, kResolutions, 4)) state.viewport.resolution = static_cast<ViewportResolution>(res);
+  if (ImGui::Combo("Preview", &res, kResolutions, 4)) {
+    state.viewport.resolution = static_cast<ViewportResolution>(res);
+    state.settings.preview = state.viewport.resolution;
+    settings_changed(state);
+  }
+  tip("Viewport resolution. auto: coarse while you edit (fluid UI), refining to full\n"
+      "resolution when idle. Remembered between sessions.");
   ImGui::Checkbox("Denoise preview (biased)", &state.viewport.denoise);
+  tip("Show the image denoised by Open Image Denoise every few frames (biased: blurs detail).");
   ImGui::PopItemWidth();
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "editor/camera_control.h"
+#include "editor/film_frame.h"
 #include "editor/picking.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
@@ -32,7 +33,7 @@ Gizmo make_gizmo(const Document& doc, ImVec2 viewport_origin, ImVec2 size) {
   Gizmo g;
   auto center = selection_center(doc.scene, doc.selection);
   if (!center) return g;
-  const Camera& cam = doc.scene.camera;
+  const Camera cam = shown_camera(doc.scene, {size.x, size.y});
   glm::vec2 o;
   if (!project_to_viewport(cam, {size.x, size.y}, *center, o)) return g;
   // A constant screen size: a fraction of the view height at the object's depth.
@@ -83,9 +84,48 @@ bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm:
   return true;
 }
 
+Camera shown_camera(const Scene& scene, glm::vec2 viewport_size) {
+  return viewport_camera(scene.camera, viewport_size, scene.film);
+}
+
+std::vector<glm::vec2> selection_outline(const Scene& scene, Selection sel, glm::vec2 size) {
+  const Camera cam = shown_camera(scene, size);
+  std::vector<glm::vec2> out;
+  auto add = [&](glm::vec3 p) {
+    glm::vec2 v;
+    if (!project_to_viewport(cam, size, p, v)) return false;
+    out.push_back(v);
+    return true;
+  };
+  if (sel.kind == SelectionKind::sphere && sel.index >= 0 && sel.index < int(scene.spheres.size())) {
+    // The silhouette is the circle where the cone from the eye touches the sphere: centre
+    // c - r^2/d u, radius r sqrt(1 - r^2/d^2), in the plane normal to u (the view direction).
+    const Sphere& s = scene.spheres[sel.index];
+    glm::vec3 to = s.center - cam.position;
+    float d = glm::length(to);
+    if (!(d > s.radius * 1.0001f)) return {};  // the eye is inside
+    glm::vec3 u = to / d;
+    glm::vec3 centre = s.center - u * (s.radius * s.radius / d);
+    float radius = s.radius * std::sqrt(1 - (s.radius * s.radius) / (d * d));
+    glm::vec3 a = glm::normalize(glm::cross(u, std::abs(u.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+    glm::vec3 b = glm::cross(u, a);
+    for (int i = 0; i < 64; ++i) {
+      float t = 2 * 3.14159265f * i / 64;
+      if (!add(centre + radius * (std::cos(t) * a + std::sin(t) * b))) return {};
+    }
+  } else if (sel.kind == SelectionKind::quad && sel.index >= 0 && sel.index < int(scene.quads.size())) {
+    const Quad& q = scene.quads[sel.index];
+    for (int c : {0, 1, 3, 2})  // around the edge (p3 is opposite p0)
+      if (!add(q.corners[c])) return {};
+  }
+  return out;
+}
+
 void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focus) {
   float aspect = state.viewport.size.x / std::max(1.0f, state.viewport.size.y);
-  auto hit = pick(doc.scene, film, aspect);
+  Scene shown = doc.scene;  // picks through the camera the viewport shows
+  shown.camera = shown_camera(doc.scene, {state.viewport.size.x, state.viewport.size.y});
+  auto hit = pick(shown, film, aspect);
   if (focus) {
     if (!hit) return show_message(state, "Nothing there to focus on");
     doc.scene.camera.focus_distance = focus_distance_for(doc.scene.camera, hit->point);
@@ -186,9 +226,16 @@ void draw_viewport(Document& doc, EditorState& state) {
   }
   if (hovered && io.MouseWheel != 0) dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
 
-  // The image goes under this window once the viewport has rendered (show_viewport_image).
+  // The image goes under this window once the viewport has rendered (show_viewport_image),
+  // with the film frame and the selection's outline, which are drawn there too.
   ImDrawList* dl = ImGui::GetWindowDrawList();
   ImVec2 end(origin.x + size.x, origin.y + size.y);
+  state.viewport.film = doc.scene.film;
+  state.viewport.outline.clear();
+  for (glm::vec2 p : selection_outline(doc.scene, doc.selection, {size.x, size.y}))
+    state.viewport.outline.push_back(ImVec2(origin.x + p.x, origin.y + p.y));
+  state.viewport.user_active = ImGui::IsAnyItemActive() || state.tools.interacting || io.MouseWheel != 0 ||
+                               io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || ImGui::IsAnyMouseDown();
   gizmo = make_gizmo(doc, origin, size);  // where the object is now
   if (gizmo.visible) draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
   if (state.tools.focus_tool)
@@ -206,6 +253,9 @@ ViewportRequest viewport_request(const EditorState& state) {
   r.target_error = v.target_error;
   r.denoise = v.denoise;
   r.trace = !export_running(state);  // the export gets the device while it runs
+  r.film_width = v.film.width;
+  r.film_height = v.film.height;
+  r.user_active = v.user_active;
   return r;
 }
 
@@ -220,6 +270,25 @@ void show_viewport_image(const ViewportView& view) {
     dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(view.frame.display_texture)), origin, end);
   else
     dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+  // The film frame: what Export writes is inside; the margins are dimmed.
+  const FilmRect f = film_rect({view.size.x, view.size.y}, view.film);
+  const ImVec2 f0(origin.x + f.offset.x, origin.y + f.offset.y);
+  const ImVec2 f1(f0.x + f.size.x, f0.y + f.size.y);
+  const ImU32 dim = IM_COL32(0, 0, 0, 150);
+  if (f0.y - origin.y > 0.5f) {
+    dl->AddRectFilled(origin, ImVec2(end.x, f0.y), dim);
+    dl->AddRectFilled(ImVec2(origin.x, f1.y), end, dim);
+  }
+  if (f0.x - origin.x > 0.5f) {
+    dl->AddRectFilled(origin, ImVec2(f0.x, end.y), dim);
+    dl->AddRectFilled(ImVec2(f1.x, origin.y), end, dim);
+  }
+  dl->AddRect(f0, f1, IM_COL32(255, 255, 255, 90));
+  // The selection's outline (Blender's orange), over the image.
+  if (view.outline.size() >= 2) {
+    dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(0, 0, 0, 140), ImDrawFlags_Closed, 3.5f);
+    dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(255, 160, 40, 255), ImDrawFlags_Closed, 1.5f);
+  }
   if (!view.frame.stats.scene_problem.empty())
     dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
                 ("Not rendering: " + view.frame.stats.scene_problem).c_str());

@@ -22,6 +22,11 @@ struct ViewportRequest {
   // this, from kErrorTargetMinSamples on (renderer/render_session.h).
   double target_error = 0;
   bool denoise = false;     // show the denoised image (editor/viewport_denoiser.h; biased)
+  // > 0: the export's film; the viewport camera frames it (editor/film_frame.h).
+  int film_width = 0, film_height = 0;
+  // The user holds a widget or a viewport drag, or moved or clicked the mouse this frame: the
+  // automatic preview does not refine then (editor/frame_budget.h).
+  bool user_active = false;
 };
 
 struct FrameStats {
@@ -29,6 +34,7 @@ struct FrameStats {
   double spp_per_second = 0;
   double ms_per_frame = 0;
   int trace_width = 0, trace_height = 0;
+  int divisor = 1;         // the viewport's framebuffer pixels per trace pixel, per axis
   bool restarted = false;  // this frame's sync reset the accumulation
   double estimated_relmse = -1;  // the image's estimated relMSE; -1 while unknown
   bool target_reached = false;   // paused at the request's target_error

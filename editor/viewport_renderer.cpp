@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include "editor/film_frame.h"
 #include "renderer/gl_context.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
@@ -35,25 +36,51 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   // Trace at framebuffer pixels (HiDPI), divided down when the device is too slow for that.
   const int full_w = std::max(1, request.width);
   const int full_h = std::max(1, request.height);
+  const bool automatic = request.resolution == ViewportResolution::automatic;
   int divisor = 1;
   switch (request.resolution) {
-    case ViewportResolution::automatic: divisor = budget_.divisor(); break;
+    case ViewportResolution::automatic: divisor = preview_.divisor() > 0 ? preview_.divisor() : budget_.divisor(); break;
     case ViewportResolution::full: divisor = 1; break;
     case ViewportResolution::half: divisor = 2; break;
     case ViewportResolution::quarter: divisor = 4; break;
   }
-  const int w = std::max(1, (full_w + divisor - 1) / divisor);
-  const int h = std::max(1, (full_h + divisor - 1) / divisor);
+  auto trace_size = [&](int d, int& w, int& h) {
+    w = std::max(1, (full_w + d - 1) / d);
+    h = std::max(1, (full_h + d - 1) / d);
+  };
+  int w, h;
+  trace_size(divisor, w, h);
+
+  // The viewport frames the export's film: its camera is widened when letterboxed.
+  const Scene* traced = &scene;
+  Scene framed;
+  if (request.film_width > 0 && request.film_height > 0) {
+    framed = scene;
+    framed.camera = viewport_camera(scene.camera, glm::vec2(full_w, full_h), Film{request.film_width, request.film_height});
+    traced = &framed;
+  }
 
   // An invalid value typed into a field (a zero-area quad, say) keeps the last good image.
-  auto problems = validate_scene(scene, false);
+  auto problems = validate_scene(*traced, false);
   stats.scene_problem = problems.empty() ? "" : problems.front().what();
   bool synced = false;
+  PreviewFrame preview_frame;
   if (problems.empty()) {
     try {
       renderer_.set_options(request.estimator);
-      stats.restarted = renderer_.sync(scene, w, h).accumulation_reset;
+      stats.restarted = renderer_.sync(*traced, w, h).accumulation_reset;
       synced = true;
+      if (automatic) {
+        // Fluid while editing, finer when idle; the level changes only here.
+        preview_frame = {stats.restarted, request.user_active, since(start_), renderer_.sample_count(),
+                         int64_t(full_w) * full_h};
+        if (int d = preview_.update(budget_, preview_frame); d != divisor) {
+          divisor = d;
+          trace_size(divisor, w, h);
+          renderer_.sync(*traced, w, h);
+          stats.restarted = true;
+        }
+      }
     } catch (const std::exception& e) {
       stats.scene_problem = e.what();  // an unreadable image: previous state kept
     }
@@ -73,15 +100,19 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
                          estimated_relmse_ >= 0 && estimated_relmse_ <= request.target_error;
   if (request.trace && synced && !stats.target_reached && renderer_.sample_count() < kViewportMaxSamples) {
     const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
-    int k = request.samples_per_frame > 0 ? request.samples_per_frame : budget_.samples(pixels);
+    int k = request.samples_per_frame > 0 ? request.samples_per_frame
+            : automatic                   ? preview_.samples(budget_, preview_frame, pixels)
+                                          : budget_.samples(pixels);
     k = static_cast<int>(std::min<int64_t>(k, kViewportMaxSamples - renderer_.sample_count()));
-    auto t0 = std::chrono::steady_clock::now();
-    renderer_.trace(k);
-    glFinish();  // the budget needs the pass's real time
-    double seconds = since(t0);
-    last_trace_seconds_ = seconds;
-    budget_.record(k, pixels, seconds, int64_t(full_w) * full_h);
-    rate_samples_ += k;
+    if (k > 0) {
+      auto t0 = std::chrono::steady_clock::now();
+      renderer_.trace(k);
+      glFinish();  // the budget needs the pass's real time
+      double seconds = since(t0);
+      last_trace_seconds_ = seconds;
+      budget_.record(k, pixels, seconds, int64_t(full_w) * full_h);
+      rate_samples_ += k;
+    }
   }
   // Samples per pixel per second of wall-clock time, over half-second windows.
   if (rate_start_.time_since_epoch().count() == 0) rate_start_ = now;
@@ -111,6 +142,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   stats.ms_per_frame = ms_per_frame_;
   stats.trace_width = renderer_.width();
   stats.trace_height = renderer_.height();
+  stats.divisor = divisor;
   stats.gl_renderer = gl_renderer_;
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return out;

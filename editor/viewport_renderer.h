@@ -37,10 +37,13 @@ class ViewportRenderer {
 
   GpuRenderer& renderer() { return renderer_; }
   FrameBudget& budget() { return budget_; }
+  const PreviewResolution& preview() const { return preview_; }
 
  private:
   GpuRenderer renderer_;
   FrameBudget budget_;
+  PreviewResolution preview_;  // the automatic mode's level
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   unsigned filtered_texture_ = 0;
   std::string gl_renderer_;
   double ms_per_frame_ = 0;  // smoothed

@@ -228,3 +228,40 @@ TEST(Document, FailedSaveThrowsAndStaysDirty) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(Document, ARunOfCameraMovesIsOneUndoStep) {
+  Document doc;
+  const Scene original = doc.scene;
+  doc.scene.spheres[0].radius = 0.7f;  // a scene edit
+  doc.end_frame(false);
+  const Scene edited = doc.scene;
+  for (int i = 0; i < 30; ++i) {  // thirty separate orbit gestures
+    doc.scene.camera.position.x += 0.1f;
+    doc.end_frame(false);
+  }
+  const Scene orbited = doc.scene;
+  doc.undo();  // all camera moves at once
+  EXPECT_EQ(doc.scene, edited);
+  doc.undo();  // then the edit
+  EXPECT_EQ(doc.scene, original);
+  EXPECT_FALSE(doc.can_undo());
+  doc.redo();
+  doc.redo();
+  EXPECT_EQ(doc.scene, orbited);
+  // An edit ends the run: the camera moves after it are a step of their own.
+  doc.scene.spheres[0].radius = 0.9f;
+  doc.end_frame(false);
+  const Scene edited_again = doc.scene;
+  doc.scene.camera.position.y += 0.5f;
+  doc.end_frame(false);
+  doc.undo();
+  EXPECT_EQ(doc.scene, edited_again);
+  doc.undo();
+  EXPECT_EQ(doc.scene, orbited);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,6 +1,8 @@
 // The frame-time controller as pure logic: simulated devices of known cost.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "editor/frame_budget.h"
 
 namespace glint {
@@ -91,6 +93,103 @@ TEST(FrameBudget, IgnoresMeaninglessMeasurements) {
   b.record(1, 100, 0.0, 100);
   EXPECT_EQ(b.cost(), 0);
   EXPECT_EQ(b.samples(1000), 1);
+}
+
+// The automatic preview over simulated frames of a device of known cost: returns the level.
+struct PreviewSim {
+  PreviewSim(double c, int64_t f) : cost(c), full(f) {}
+  FrameBudget budget;
+  PreviewResolution preview;
+  double cost;
+  int64_t full;
+  double now = 0;
+  int64_t samples = 0;
+  int restarts = 0;
+  int traced_frames = 0;
+
+  // One frame: `changed` is an edit (the sync restarted), `active` the user's input.
+  void frame(bool changed, bool active) {
+    PreviewFrame f{changed, active, now, changed ? 0 : samples, full};
+    const int before = preview.divisor();
+    const int d = preview.update(budget, f);
+    if (changed || d != before) {
+      samples = 0;
+      ++restarts;
+    }
+    const int64_t pixels = full / (int64_t(d) * d);
+    f.samples = samples;
+    const int k = preview.samples(budget, f, pixels);
+    double seconds = 0.005;  // the UI's own part of the frame
+    if (k > 0) {
+      budget.record(k, pixels, cost * k * pixels, full);
+      samples += k;
+      seconds += cost * k * pixels;
+      ++traced_frames;
+    }
+    now += seconds;
+  }
+};
+
+TEST(PreviewResolution, IdleRefinesToFullResolutionWhereAPassFitsTheIdleBudget) {
+  // A fast device: every level fits; idle refinement reaches full resolution.
+  PreviewSim fast(1e-10, 1920 * 1080);
+  fast.frame(true, false);
+  for (int i = 0; i < 400 && fast.preview.divisor() > 1; ++i) fast.frame(false, false);
+  EXPECT_EQ(fast.preview.divisor(), 1);
+  // llvmpipe-like (0.35 M samples/s) in a 700x750 viewport: it refines while one pass at the
+  // finer level fits idle_trace_seconds, and stops there.
+  PreviewSim slow(1 / 0.35e6, 700 * 750);
+  for (int i = 0; i < 10; ++i) slow.frame(true, false);  // the budget learns the cost
+  const int fluid = slow.preview.divisor();
+  for (int i = 0; i < 400; ++i) slow.frame(false, false);
+  const int d = slow.preview.divisor();
+  EXPECT_LT(d, fluid);
+  const double idle = slow.budget.config().idle_trace_seconds;
+  EXPECT_LE(slow.cost * double(slow.full) / (double(d) * d), idle);
+  const int finer = std::max(1, d / 2);
+  EXPECT_TRUE(d == 1 || slow.cost * double(slow.full) / (double(finer) * finer) > idle);
+}
+
+TEST(PreviewResolution, OnlyEditsAndRefinementChangeTheLevel) {
+  PreviewSim sim(1 / 0.35e6, 700 * 750);
+  sim.frame(true, false);
+  for (int i = 0; i < 400; ++i) sim.frame(false, false);
+  const int refined = sim.preview.divisor();
+  const int restarts = sim.restarts;
+  // Input without edits (hovering, clicks that select, the exposure drag): same level, no
+  // restart, and the accumulation is kept.
+  const int64_t kept = sim.samples;
+  for (int i = 0; i < 50; ++i) sim.frame(false, true);
+  EXPECT_EQ(sim.preview.divisor(), refined);
+  EXPECT_EQ(sim.restarts, restarts);
+  EXPECT_GE(sim.samples, kept);
+  // An edit: back to the fluid level at once, where each frame fits the frame budget.
+  sim.frame(true, true);
+  EXPECT_EQ(sim.preview.divisor(), sim.budget.divisor());
+  EXPECT_GT(sim.preview.divisor(), refined);
+  for (int i = 0; i < 20; ++i) sim.frame(true, true);
+  EXPECT_LE(sim.cost * double(sim.full) / (double(sim.preview.divisor()) * sim.preview.divisor()),
+            sim.budget.config().trace_seconds * 1.0001);
+}
+
+TEST(PreviewResolution, ALevelTooSlowForAnIdleFrameGoesBackToFluid) {
+  // The first frame's guess (before any measurement) on a slow device in a large viewport.
+  PreviewSim sim(1 / 0.35e6, 2560 * 1600);
+  sim.frame(true, false);
+  const int guess = sim.preview.divisor();
+  for (int i = 0; i < 5; ++i) sim.frame(false, false);
+  EXPECT_GT(sim.preview.divisor(), guess);
+  const int d = sim.preview.divisor();
+  EXPECT_LE(sim.cost * double(sim.full) / (double(d) * d), 1.5 * sim.budget.config().idle_trace_seconds);
+}
+
+TEST(PreviewResolution, AtTheFluidLevelInputNeverPausesTheAccumulation) {
+  PreviewSim sim(1 / 0.35e6, 700 * 750);
+  sim.frame(true, false);
+  for (int i = 0; i < 30; ++i) sim.frame(true, true);  // settle the budget while editing
+  const int traced = sim.traced_frames;
+  for (int i = 0; i < 30; ++i) sim.frame(false, true);  // e.g. dragging the exposure
+  EXPECT_EQ(sim.traced_frames, traced + 30);
 }
 
 }  // namespace

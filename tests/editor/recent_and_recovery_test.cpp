@@ -67,6 +67,35 @@ TEST(AppState, DefaultFoldersFollowXdg) {
   else unsetenv("XDG_CONFIG_HOME");
 }
 
+TEST(EditorSettings, PreviewAndExportFolderAreRemembered) {
+  TempDir dir;
+  EXPECT_EQ(load_editor_settings(dir.path()), EditorSettings{});  // none yet: the defaults
+  EditorSettings s;
+  s.preview = ViewportResolution::half;
+  s.export_dir = "/some/renders";
+  save_editor_settings(s, dir.path());
+  EXPECT_TRUE(fs::exists(dir / "settings.json"));
+  EXPECT_EQ(load_editor_settings(dir.path()), s);
+  std::ofstream(dir / "settings.json") << R"({"preview": "sideways", "export_dir": 3})";
+  EXPECT_EQ(load_editor_settings(dir.path()), EditorSettings{});  // unknown values: defaults
+  std::ofstream(dir / "settings.json") << "{ not json";
+  EXPECT_EQ(load_editor_settings(dir.path()), EditorSettings{});
+}
+
+TEST(EditorSettings, ExportsGoToPicturesElseHomeNeverTheProject) {
+  TempDir home;
+  setenv("HOME", home.path().c_str(), 1);
+  setenv("XDG_CONFIG_HOME", (home / ".config").c_str(), 1);
+  EXPECT_EQ(default_export_dir(), home.path());
+  fs::create_directories(home / "Pictures");
+  EXPECT_EQ(default_export_dir(), home / "Pictures");
+  // xdg-user-dirs' setting wins.
+  fs::create_directories(home / "Bilder");
+  fs::create_directories(home / ".config");
+  std::ofstream(home / ".config/user-dirs.dirs") << "XDG_PICTURES_DIR=\"$HOME/Bilder\"\n";
+  EXPECT_EQ(default_export_dir(), home / "Bilder");
+}
+
 TEST(Recovery, NoneWhenNothingWritten) {
   TempDir dir;
   EXPECT_FALSE(find_recovery(dir.path()));

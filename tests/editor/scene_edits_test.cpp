@@ -93,12 +93,12 @@ TEST(SceneEdits, DuplicateGetsNewNameAndOffset) {
   EXPECT_EQ(problems(s), "");
 }
 
-TEST(SceneEdits, DeleteObjectsSelectsNeighbour) {
+TEST(SceneEdits, DeleteObjectsSelectsNothing) {
   Scene s = new_scene();
   add_sphere(s);
   add_sphere(s);
-  EXPECT_EQ(remove(s, {kSphere, 2}), (Selection{kSphere, 1}));
-  EXPECT_EQ(remove(s, {kSphere, 0}), (Selection{kSphere, 0}));
+  EXPECT_EQ(remove(s, {kSphere, 2}), Selection{});
+  EXPECT_EQ(remove(s, {kSphere, 0}), Selection{});
   EXPECT_EQ(s.spheres[0].name, "sphere_2");
   EXPECT_EQ(remove(s, {kSphere, 0}), Selection{});
   EXPECT_TRUE(s.spheres.empty());
@@ -119,6 +119,23 @@ TEST(SceneEdits, DeleteUsedMaterialReassignsUsers) {
   EXPECT_EQ(s.spheres[0].material, s.materials[0].name);
   EXPECT_EQ(s.quads[0].material, s.materials[0].name);
   EXPECT_EQ(problems(s), "");
+}
+
+TEST(SceneEdits, NewObjectsTakeANeutralMaterialNotTheFirst) {
+  Scene s = new_scene();
+  Material wood;
+  wood.name = "wood";
+  wood.color = {0.6f, 0.4f, 0.2f};
+  s.materials.insert(s.materials.begin(), wood);  // first in the list, not neutral
+  s.materials.insert(s.materials.begin(), Material{.name = "lamp", .emission = {4, 4, 4}});
+  EXPECT_EQ(s.spheres[add_sphere(s)].material, "grey_matte");
+  // None neutral: a grey matte "default" is added and used.
+  for (Material& m : s.materials) m.color_texture = m.name == "grey_matte" ? "wood" : "";
+  s.textures.push_back({"wood", "assets/wood.png"});
+  const int q = add_quad(s);
+  EXPECT_EQ(s.quads[q].material, "default");
+  EXPECT_TRUE(is_neutral(s.materials.back()));
+  EXPECT_EQ(material_users(s, "default"), std::vector<std::string>{"quad " + s.quads[q].name});
 }
 
 TEST(SceneEdits, DeleteTextureClearsSlots) {

@@ -16,6 +16,7 @@
 
 #include "renderer/render_session.h"
 #include "editor/editor_frame.h"
+#include "editor/film_frame.h"
 #include "editor/picking.h"
 #include "editor/recent_and_recovery.h"
 #include "editor/scene_edits.h"
@@ -88,7 +89,7 @@ class UiTest : public ::testing::Test {
   // Screen position of a world point in the viewport.
   ImVec2 screen(glm::vec3 p) {
     glm::vec2 v;
-    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
+    EXPECT_TRUE(project_to_viewport(shown_scene().camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
     return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
   }
   void click(ImVec2 at, bool ctrl = false) {
@@ -111,6 +112,12 @@ class UiTest : public ::testing::Test {
     return ImVec2(w->Pos.x + style.WindowPadding.x + n * (width + style.ItemSpacing.x) + width / 2,
                   w->Pos.y + w->Size.y - style.WindowPadding.y - ImGui::GetFrameHeight() / 2);
   }
+  // The scene as the viewport traces it: the camera widened to frame the film.
+  Scene shown_scene() {
+    Scene s = doc_.scene;
+    s.camera = shown_camera(doc_.scene, {state_.viewport.size.x, state_.viewport.size.y});
+    return s;
+  }
   // The status bar's text (all its pieces).
   std::string status_text() {
     std::string text;
@@ -123,11 +130,12 @@ class UiTest : public ::testing::Test {
     float best_d = 1e30f;
     for (size_t i = 0; i < doc_.scene.spheres.size(); ++i) {
       glm::vec2 v;
-      if (!project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y},
+      const Scene shown = shown_scene();
+      if (!project_to_viewport(shown.camera, {state_.viewport.size.x, state_.viewport.size.y},
                                doc_.scene.spheres[i].center, v))
         continue;
       glm::vec2 film = v / glm::vec2(state_.viewport.size.x, state_.viewport.size.y);
-      auto hit = pick(doc_.scene, film, state_.viewport.size.x / state_.viewport.size.y);
+      auto hit = pick(shown, film, state_.viewport.size.x / state_.viewport.size.y);
       float d = glm::length(film - glm::vec2(0.5f));
       if (hit && hit->what == Selection{SelectionKind::sphere, int(i)} && d < best_d) {
         best = int(i);
@@ -205,7 +213,7 @@ TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
   ASSERT_GT(before, 0);
 
   doc_.scene.display.exposure += 1.5f;  // what the exposure slider writes
-  SyncResult s = r.sync(doc_.scene, w, h);
+  SyncResult s = r.sync(shown_scene(), w, h);
   EXPECT_FALSE(s.accumulation_reset);
   EXPECT_TRUE(s.display_changed);
   EXPECT_EQ(r.sample_count(), before);
@@ -217,7 +225,7 @@ TEST_F(UiTest, EditingASphereResetsExposureDoesNot) {
   EXPECT_GT(r.sample_count(), more);
 
   doc_.scene.spheres[0].radius *= 1.1f;  // what the radius field writes
-  s = r.sync(doc_.scene, w, h);
+  s = r.sync(shown_scene(), w, h);
   EXPECT_TRUE(s.accumulation_reset);
   EXPECT_EQ(r.sample_count(), 0);
   doc_.scene.spheres[0].center.x += 0.1f;
@@ -233,9 +241,11 @@ TEST_F(UiTest, ClickSelectsCtrlClickFocusesEmptyClickDeselects) {
   EXPECT_EQ(doc_.selection, (Selection{SelectionKind::sphere, ball}));
 
   float focus_before = doc_.scene.camera.focus_distance;
-  click(screen(s.center), /*ctrl=*/true);
-  auto hit = pick(doc_.scene, {(screen(s.center).x - state_.viewport.pos.x) / state_.viewport.size.x,
-                               (screen(s.center).y - state_.viewport.pos.y) / state_.viewport.size.y},
+  // ImGui floors the mouse position: pick where the click really lands.
+  const ImVec2 at(std::floor(screen(s.center).x), std::floor(screen(s.center).y));
+  click(at, /*ctrl=*/true);
+  auto hit = pick(shown_scene(), {(at.x - state_.viewport.pos.x) / state_.viewport.size.x,
+                                  (at.y - state_.viewport.pos.y) / state_.viewport.size.y},
                   state_.viewport.size.x / state_.viewport.size.y);
   ASSERT_TRUE(hit);
   EXPECT_NEAR(doc_.scene.camera.focus_distance, focus_distance_for(doc_.scene.camera, hit->point), 1e-3);
@@ -252,7 +262,7 @@ TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
   frame();
   const glm::vec3 c0 = doc_.scene.spheres[ball].center;
   // Grab the x handle in its middle (the handle is 0.3 of the half view height at its depth).
-  const Camera& cam = doc_.scene.camera;
+  const Camera cam = shown_scene().camera;  // the gizmo's size follows the viewport's camera
   float depth = glm::dot(c0 - cam.position, glm::normalize(cam.target - cam.position));
   float len = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
   ImVec2 a = screen(c0), b = screen(c0 + glm::vec3(len, 0, 0));
@@ -560,6 +570,245 @@ TEST_F(UiTest, AutosaveFailureShowsInTheStatusLine) {
   text = status_text();
   EXPECT_EQ(text.find("autosave failed"), std::string::npos) << text;
   EXPECT_TRUE(find_recovery(dir / "blocker" / "glint"));
+}
+
+// ---- Usability: the automatic preview, the film frame, deleting, dropping files.
+
+class UiUsabilityTest : public UiTest {
+ protected:
+  const FrameStats& stats() const { return state_.viewport.frame.stats; }
+  ImVec2 find(const char* window, const char* label, float x_offset = 60) {
+    ImGuiWindow* w = ImGui::FindWindowByName(window);
+    if (!w) return ImVec2(-1, -1);
+    const ImGuiID id = w->GetID(label);
+    ImGuiIO& io = ImGui::GetIO();
+    for (float y = w->Pos.y + 4; y < w->Pos.y + w->Size.y; y += 6) {
+      io.MousePos = ImVec2(w->Pos.x + x_offset, y);
+      frame();
+      if (ImGui::GetCurrentContext()->HoveredId == id) return io.MousePos;
+    }
+    return ImVec2(-1, -1);
+  }
+  bool window_active(const char* name) {
+    ImGuiWindow* w = ImGui::FindWindowByName(name);
+    return w && w->Active;
+  }
+  void set_budget(double idle_delay, double idle_trace, int refine_min_samples) {
+    FrameBudgetConfig c = viewport_->budget().config();
+    c.idle_delay_seconds = idle_delay;
+    c.idle_trace_seconds = idle_trace;
+    c.refine_min_samples = refine_min_samples;
+    viewport_->budget().set_config(c);
+  }
+};
+
+TEST_F(UiUsabilityTest, AutoPreviewKeepsAccumulatingWhileTheExposureIsDragged) {
+  // No idle refinement (its restarts are deliberate and tested below): any restart here would
+  // be the exposure's.
+  set_budget(0.3, 0.25, 1 << 30);
+  state_.viewport.resolution = ViewportResolution::automatic;  // the default mode
+  doc_.selection = {SelectionKind::sphere, 0};  // a short panel: Display near its top
+  frame();
+  const ImVec2 at = find("Properties", "Exposure");
+  ASSERT_GE(at.x, 0) << "the Exposure slider was not found";
+  EXPECT_TRUE(window_active("##Tooltip_00")) << "no tooltip on the Exposure slider";
+  ImGuiIO& io = ImGui::GetIO();
+  const float exposure = doc_.scene.display.exposure;
+  io.MouseDown[0] = true;
+  frame();
+  const int64_t before = stats().spp;
+  const int width = stats().trace_width;
+  int64_t last = before;
+  for (int i = 0; i < 20; ++i) {
+    io.MousePos.x += 3;
+    frame();
+    EXPECT_FALSE(stats().restarted) << "frame " << i;
+    EXPECT_GE(stats().spp, last) << "frame " << i;
+    EXPECT_EQ(stats().trace_width, width) << "frame " << i;
+    last = stats().spp;
+  }
+  EXPECT_NE(doc_.scene.display.exposure, exposure);
+  // It traces on during the drag, unless the level is finer than a fluid frame allows, where
+  // it pauses (keeping every sample) until the mouse is released.
+  const bool paused = viewport_->preview().divisor() < viewport_->budget().divisor();
+  EXPECT_TRUE(last > before || paused) << before << " -> " << last;
+  io.MouseDown[0] = false;
+  for (int i = 0; i < 3; ++i) frame();
+  EXPECT_GT(stats().spp, before);
+}
+
+TEST_F(UiUsabilityTest, AutoPreviewRefinesToFullResolutionWhenIdle) {
+  // Refine at once while a pass fits 1 s (llvmpipe in this small viewport): the end state counts.
+  set_budget(0, 1, 1);
+  ImGui::GetIO().DisplaySize = ImVec2(640, 400);
+  state_.viewport.resolution = ViewportResolution::automatic;
+  ImGui::GetIO().MousePos = ImVec2(-1, -1);  // no input at all
+  frame();
+  EXPECT_GT(stats().divisor, 1);  // it starts coarse
+  for (int i = 0; i < 40 && stats().divisor > 1; ++i) frame();
+  EXPECT_EQ(stats().divisor, 1);
+  EXPECT_EQ(stats().trace_width, int(std::lround(state_.viewport.size.x * state_.viewport.framebuffer_scale)));
+  EXPECT_EQ(stats().trace_height, int(std::lround(state_.viewport.size.y * state_.viewport.framebuffer_scale)));
+  const int64_t spp = stats().spp;
+  frame();
+  EXPECT_GT(stats().spp, spp);  // and accumulates there
+}
+
+TEST_F(UiUsabilityTest, AutoPreviewClicksThatEditNothingDoNotRestart) {
+  set_budget(0.3, 0.25, 1 << 30);  // no idle refinement: any restart would be the clicks'
+  state_.viewport.resolution = ViewportResolution::automatic;
+  for (int i = 0; i < 3; ++i) frame();
+  const int ball = visible_sphere();
+  ASSERT_GE(ball, 0);
+  ImGuiIO& io = ImGui::GetIO();
+  const ImVec2 targets[] = {screen(doc_.scene.spheres[ball].center),  // selects
+                            ImVec2(state_.viewport.pos.x + 3, state_.viewport.pos.y + 3)};
+  int64_t last = stats().spp;
+  for (ImVec2 target : targets)
+    for (int step = 0; step < 3; ++step) {
+      io.MousePos = target;
+      io.MouseDown[0] = step == 1;
+      frame();
+      EXPECT_FALSE(stats().restarted) << "step " << step;
+      EXPECT_GE(stats().spp, last);
+      last = stats().spp;
+    }
+  EXPECT_EQ(doc_.selection.kind, SelectionKind::none);  // the second click deselected
+}
+
+TEST_F(UiUsabilityTest, ViewportFramesTheFilmAndFramesTheSelectionWithMargin) {
+  // The test's viewport is portrait, the default film 960x540: letterboxed.
+  const glm::vec2 size(state_.viewport.size.x, state_.viewport.size.y);
+  ASSERT_LT(size.x / size.y, float(doc_.scene.film.width) / doc_.scene.film.height);
+  const FilmRect r = film_rect(size, doc_.scene.film);
+  EXPECT_GT(r.offset.y, 1);
+  // What the viewport traces: the widened camera, so the rect shows the export's view.
+  EXPECT_GT(shown_camera(doc_.scene, size).vfov_deg, doc_.scene.camera.vfov_deg);
+  const int ball = visible_sphere();
+  ASSERT_GE(ball, 0);
+  doc_.selection = {SelectionKind::sphere, ball};
+  press(GLFW_KEY_F);
+  const std::vector<glm::vec2> outline = selection_outline(doc_.scene, doc_.selection, size);
+  ASSERT_FALSE(outline.empty());
+  EXPECT_EQ(state_.viewport.outline.size(), outline.size());  // drawn this frame
+  float top = 1e9f, bottom = -1e9f;
+  for (glm::vec2 p : outline) {
+    EXPECT_GT(p.x, r.offset.x);
+    EXPECT_LT(p.x, r.offset.x + r.size.x);
+    top = std::min(top, p.y);
+    bottom = std::max(bottom, p.y);
+  }
+  EXPECT_GT(top, r.offset.y);
+  EXPECT_LT(bottom, r.offset.y + r.size.y);
+  const float fill = (bottom - top) / r.size.y;
+  EXPECT_GT(fill, 0.45f);  // framed, with room around it
+  EXPECT_LT(fill, 0.75f);
+}
+
+TEST_F(UiUsabilityTest, DeletingAMaterialInUseAsksAndSelectsNothingAfter) {
+  const int m = find_material(doc_.scene, doc_.scene.spheres[0].material);
+  ASSERT_GE(m, 0);
+  const std::string name = doc_.scene.materials[m].name;
+  const size_t count = doc_.scene.materials.size();
+  ASSERT_FALSE(material_users(doc_.scene, name).empty());
+  doc_.selection = {SelectionKind::material, m};
+  press(GLFW_KEY_DELETE);
+  EXPECT_TRUE(window_active("Delete material?"));
+  EXPECT_EQ(doc_.scene.materials.size(), count);  // nothing yet
+  press(GLFW_KEY_ESCAPE);
+  EXPECT_FALSE(window_active("Delete material?"));
+  EXPECT_EQ(doc_.scene.materials.size(), count);
+  EXPECT_EQ(doc_.selection, (Selection{SelectionKind::material, m}));
+  press(GLFW_KEY_DELETE);
+  ASSERT_TRUE(window_active("Delete material?"));
+  click(popup_button("Delete material?", 0, 120));
+  EXPECT_EQ(find_material(doc_.scene, name), -1);
+  // The default project has no neutral material: a grey "default" replaced the deleted one.
+  EXPECT_EQ(doc_.scene.materials.size(), count);
+  EXPECT_GE(find_material(doc_.scene, "default"), 0);
+  const int now = find_material(doc_.scene, doc_.scene.spheres[0].material);
+  ASSERT_GE(now, 0);
+  EXPECT_TRUE(is_neutral(doc_.scene.materials[now]));
+  EXPECT_EQ(doc_.selection.kind, SelectionKind::none);
+  press(GLFW_KEY_DELETE);  // a second Delete removes nothing else
+  EXPECT_EQ(doc_.scene.materials.size(), count);
+  EXPECT_EQ(test::problems(doc_.scene), "");
+}
+
+TEST_F(UiUsabilityTest, HelpWindowsAndExportDialogFitWithoutScrolling) {
+  state_.show_controls = state_.show_about = true;
+  frame();
+  frame();
+  EXPECT_TRUE(window_active("Controls"));
+  EXPECT_TRUE(window_active("About Glint"));
+  state_.show_controls = state_.show_about = false;
+  test::TempDir dir;
+  state_.export_ui.show = true;
+  state_.export_ui.settings = default_export_settings(doc_, state_);
+  state_.export_ui.settings.output = dir / "shot.png";
+  state_.export_ui.settings.width = 48;
+  state_.export_ui.settings.height = 27;
+  state_.export_ui.settings.samples = 64;
+  frame();
+  frame();
+  ImGuiWindow* w = ImGui::FindWindowByName("Export render");
+  ASSERT_NE(w, nullptr);
+  EXPECT_FALSE(w->ScrollbarY);
+  state_.export_ui.job = std::make_unique<ExportJob>(doc_.scene, state_.export_ui.settings);
+  frame();
+  frame();
+  EXPECT_FALSE(w->ScrollbarY);  // progress, ETA and Cancel show
+  EXPECT_GE(w->Size.x, 520);
+  for (int i = 0; i < 500 && export_running(state_); ++i) frame();
+  frame();
+  EXPECT_FALSE(w->ScrollbarY);  // and the result
+  EXPECT_TRUE(fs::exists(dir / "shot.png"));
+}
+
+TEST_F(UiUsabilityTest, DroppedImagesBecomeTexturesOrTheEnvironment) {
+  test::TempDir dir;
+  test::copy_asset("wood_color.png", dir / "wood.png");
+  test::copy_asset("sky.hdr", dir / "sky.hdr");
+  {
+    std::ofstream(dir / "notes.png") << "not an image";
+  }
+  // Nothing selected: an image has no material to go to.
+  doc_.selection = {};
+  EXPECT_EQ(drop_file(doc_, state_, dir / "wood.png"), "");
+  frame();
+  frame();
+  EXPECT_TRUE(error_open_);
+  click(popup_button("Error", 0, 90));
+  frame();
+  EXPECT_FALSE(error_open_);
+  // On the selected sphere: its material's colour texture.
+  doc_.selection = {SelectionKind::sphere, 0};
+  const int m = find_material(doc_.scene, doc_.scene.spheres[0].material);
+  EXPECT_NE(drop_file(doc_, state_, dir / "wood.png"), "");
+  const int t = find_texture(doc_.scene, doc_.scene.materials[m].color_texture);
+  ASSERT_GE(t, 0);
+  EXPECT_EQ(fs::path(resolve_asset_path(doc_.scene, doc_.scene.textures[t].path)).filename(), "wood.png");
+  // .hdr: the environment.
+  EXPECT_NE(drop_file(doc_, state_, dir / "sky.hdr"), "");
+  EXPECT_EQ(fs::path(doc_.scene.environment.texture).filename(), "sky.hdr");
+  // A file that is no image: refused, the scene unchanged.
+  const Scene before = doc_.scene;
+  EXPECT_EQ(drop_file(doc_, state_, dir / "notes.png"), "");
+  EXPECT_EQ(doc_.scene, before);
+  frame();
+  frame();
+  EXPECT_TRUE(error_open_);
+  EXPECT_EQ(test::problems(doc_.scene, true), "");
+}
+
+TEST_F(UiUsabilityTest, FileChoosersForImagesStartInAFolder) {
+  for (FilePurpose p : {FilePurpose::texture_slot, FilePurpose::add_texture, FilePurpose::environment,
+                        FilePurpose::open_project}) {
+    const std::string start = file_dialog_start(doc_, state_, p);
+    EXPECT_EQ(start.back(), '/') << start;
+    EXPECT_EQ(start.find("default.glint"), std::string::npos) << start;
+  }
+  EXPECT_EQ(fs::path(file_dialog_start(doc_, state_, FilePurpose::save_project_as)).filename(), "default.glint");
 }
 
 }  // namespace
