@@ -219,7 +219,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
       perform(doc, state, next, state.flow.pending_path);
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
       ImGui::CloseCurrentPopup();
       state.flow.pending = DocAction::none;
     }
@@ -244,7 +244,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
       if (!chosen.empty()) apply_chosen_file(doc, state, state.flow.prompt.purpose, chosen);
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
       ImGui::CloseCurrentPopup();
       if (state.flow.prompt.purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
     }
@@ -263,7 +263,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
     ImGui::PopTextWrapPos();
     // The Enter that confirmed a typed path opens this box in the same frame (and may repeat
     // while held): only a press that follows a release closes it.
-    const int enter = ImGui::GetKeyIndex(ImGuiKey_Enter);
+    const ImGuiKey enter = ImGuiKey_Enter;
     const bool enter_closes = state.messages.error_enter_released && ImGui::IsKeyPressed(enter, false);
     if (!ImGui::IsKeyDown(enter)) state.messages.error_enter_released = true;
     if (ImGui::Button("OK", ImVec2(90, 0)) || enter_closes) ImGui::CloseCurrentPopup();

@@ -27,7 +27,7 @@ void section_title(const char* text) {
   ImGui::Separator();
 }
 
-ImTextureID tex_id(unsigned t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t)); }
+ImTextureID tex_id(unsigned t) { return static_cast<ImTextureID>(t); }
 
 void name_field(Document& doc, EditorState& state, Selection sel) {
   char buf[256];

@@ -1,11 +1,18 @@
-// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list,
-// mouse navigation (orbit, pan, zoom), and the rendered image under them.
+// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list
+// (spheres and quads), ImGuizmo's rotate and scale gizmos for quads, mouse navigation (orbit,
+// pan, zoom), and the rendered image under them.
 #include <cmath>
+
+#include <imgui.h>  // before ImGuizmo.h, which needs its types
+#include <ImGuizmo.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "editor/camera_control.h"
 #include "editor/picking.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_layout.h"
 
 namespace glint {
 namespace {
@@ -65,6 +72,66 @@ void draw_gizmo(const Gizmo& g, int hover, int active) {
   dl->AddCircleFilled(g.origin, 4, IM_COL32(255, 255, 255, 220));
 }
 
+// The quad's own frame: x along its first edge, z its normal, at its centre. Rotating or
+// scaling this frame with ImGuizmo rotates or scales the quad about its centre along its edges.
+glm::mat4 quad_frame(const Quad& q) {
+  const glm::vec3 c = (q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25f;
+  const glm::vec3 u = q.corners[2] - q.corners[0], v = q.corners[1] - q.corners[0];
+  const glm::vec3 x = glm::normalize(u), z = glm::normalize(glm::cross(u, v)), y = glm::cross(z, x);
+  return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(c, 1));
+}
+
+// ImGuizmo's rotate or scale gizmo on the selected quad. The drag is applied to the corners the
+// quad had when it started (no drift from re-deriving the frame each frame); while it lasts the
+// tools are "interacting", so the whole drag is one undo step.
+void quad_gizmo(Document& doc, EditorState& state, ImVec2 origin, ImVec2 size) {
+  ViewportTools& t = state.tools;
+  const bool quad = doc.selection.kind == SelectionKind::quad && doc.selection.index >= 0 &&
+                    doc.selection.index < int(doc.scene.quads.size());
+  if (!quad || t.gizmo_mode == GizmoMode::translate) {
+    t.quad_drag = false;
+    return;
+  }
+  Quad& q = doc.scene.quads[doc.selection.index];
+  const Camera& cam = doc.scene.camera;
+  const glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
+  const glm::mat4 proj = glm::perspective(glm::radians(cam.vfov_deg), size.x / std::max(1.0f, size.y), 0.01f, 1000.0f);
+  if (!t.quad_drag) {
+    t.quad_start_corners = q.corners;
+    t.quad_start_frame = quad_frame(q);
+    t.quad_matrix = t.quad_start_frame;
+  }
+  ImGuizmo::SetOrthographic(false);
+  ImGuizmo::SetDrawlist(ImGui::GetWindowDrawList());
+  ImGuizmo::SetRect(origin.x, origin.y, size.x, size.y);
+  const ImGuizmo::OPERATION op = t.gizmo_mode == GizmoMode::rotate ? ImGuizmo::ROTATE : ImGuizmo::SCALE;
+  ImGuizmo::Manipulate(glm::value_ptr(view), glm::value_ptr(proj), op, ImGuizmo::LOCAL, glm::value_ptr(t.quad_matrix));
+  if (ImGuizmo::IsUsing()) {
+    t.quad_drag = true;
+    t.interacting = true;
+    const glm::mat4 change = t.quad_matrix * glm::inverse(t.quad_start_frame);
+    for (int i = 0; i < 4; ++i) {
+      const glm::vec3 c = glm::vec3(change * glm::vec4(t.quad_start_corners[i], 1));
+      if (q.corners[i] != c) q.corners[i] = c;
+    }
+  } else {
+    t.quad_drag = false;
+  }
+}
+
+// Move, Rotate, Scale: which gizmo the selection shows (rotate and scale are for quads).
+void draw_gizmo_toolbar(EditorState& state) {
+  ImGui::SetCursorPos(ImVec2(ImGui::GetStyle().ItemSpacing.x, ImGui::GetStyle().ItemSpacing.y));
+  const char* names[] = {"Move", "Rotate", "Scale"};
+  for (int i = 0; i < 3; ++i) {
+    if (i) ImGui::SameLine();
+    const bool on = int(state.tools.gizmo_mode) == i;
+    if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+    if (ImGui::SmallButton(names[i])) state.tools.gizmo_mode = GizmoMode(i);
+    if (on) ImGui::PopStyleColor();
+  }
+}
+
 }  // namespace
 
 bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm::vec2& out) {
@@ -100,26 +167,37 @@ void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focu
 
 void draw_viewport(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(state.viewport.pos);
-  ImGui::SetNextWindowSize(state.viewport.size);
+  ImGuizmo::BeginFrame();
+  // A dockable window without a background (the image goes under it, show_viewport_image);
+  // its input and overlays live in a child window that covers it, drawn above that image.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
-  ImGui::Begin("Viewport", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
-                   ImGuiWindowFlags_NoBackground);
-  ImGui::PopStyleVar(2);
+  const bool open = ImGui::Begin(kViewportWindow, nullptr,
+                                 ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoCollapse);
+  ImGui::PopStyleVar();
+  if (!open) {
+    ImGui::End();
+    return;
+  }
   ImVec2 origin = ImGui::GetCursorScreenPos();
   ImVec2 size = ImGui::GetContentRegionAvail();
   size.x = std::max(size.x, 1.0f);
   size.y = std::max(size.y, 1.0f);
+  state.viewport.pos = origin;
+  state.viewport.size = size;
+  ImGui::BeginChild("##viewport overlay", size, ImGuiChildFlags_None,
+                    ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
 
   // One item over the whole image: ImGui then knows a drag here is in progress.
   ImGui::InvisibleButton("##viewport", size,
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
   const bool hovered = ImGui::IsItemHovered();
-  Gizmo gizmo = make_gizmo(doc, origin, size);
+  quad_gizmo(doc, state, origin, size);
+  const bool quad_gizmo_busy = state.tools.quad_drag || (state.tools.gizmo_mode != GizmoMode::translate && ImGuizmo::IsOver());
+  Gizmo gizmo = state.tools.gizmo_mode == GizmoMode::translate || doc.selection.kind != SelectionKind::quad
+                    ? make_gizmo(doc, origin, size)
+                    : Gizmo{};
   state.tools.gizmo_hover = -1;
   // Ctrl+click and the focus tool always focus, even on the gizmo.
   const bool focusing = state.tools.focus_tool || io.KeyCtrl;
@@ -135,7 +213,7 @@ void draw_viewport(Document& doc, EditorState& state) {
     const ImVec2& e = gizmo.ends[state.tools.gizmo_axis];
     state.tools.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
     state.tools.gizmo_length = gizmo.length;
-  } else if (hovered && state.tools.camera_button < 0) {
+  } else if (hovered && state.tools.camera_button < 0 && !quad_gizmo_busy) {
     for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
       if (ImGui::IsMouseClicked(b)) {
         state.tools.camera_button = b;
@@ -189,10 +267,15 @@ void draw_viewport(Document& doc, EditorState& state) {
   // The image goes under this window once the viewport has rendered (show_viewport_image).
   ImDrawList* dl = ImGui::GetWindowDrawList();
   ImVec2 end(origin.x + size.x, origin.y + size.y);
-  gizmo = make_gizmo(doc, origin, size);  // where the object is now
-  if (gizmo.visible) draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
+  if (gizmo.visible) {
+    gizmo = make_gizmo(doc, origin, size);  // where the object is now
+    draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
+  }
   if (state.tools.focus_tool)
-    dl->AddText(ImVec2(origin.x + 10, end.y - 24), IM_COL32(255, 230, 120, 255), "Focus tool: click a surface");
+    dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255),
+                "Focus tool: click a surface");
+  draw_gizmo_toolbar(state);
+  ImGui::EndChild();
   ImGui::End();
 }
 
@@ -208,19 +291,24 @@ ViewportRequest viewport_request(const EditorState& state) {
 }
 
 void show_viewport_image(const ViewportView& view) {
-  // ImGui's background list is drawn before every window; the viewport window has no
-  // background of its own, so its gizmo and texts lie on top of the image. The image is the
-  // one rendered this frame for view.size, so a resize never shows a stale or stretched frame.
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const ImVec2 origin = view.pos;
-  const ImVec2 end(origin.x + view.size.x, origin.y + view.size.y);
-  if (view.frame.display_texture)
-    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(view.frame.display_texture)), origin, end);
-  else
-    dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
-  if (!view.frame.stats.scene_problem.empty())
-    dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
-                ("Not rendering: " + view.frame.stats.scene_problem).c_str());
+  // Appends to the viewport window (its Begin a second time this frame): the window's own draw
+  // list is drawn before its overlay child, so the gizmo and texts lie on top of the image. The
+  // image is the one rendered this frame for view.size, so a resize never shows a stale or
+  // stretched frame. A hidden viewport (another tab in front) draws nothing.
+  const bool open = ImGui::Begin(kViewportWindow);
+  if (open) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 origin = view.pos;
+    const ImVec2 end(origin.x + view.size.x, origin.y + view.size.y);
+    if (view.frame.display_texture)
+      dl->AddImage(static_cast<ImTextureID>(view.frame.display_texture), origin, end);
+    else
+      dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+    if (!view.frame.stats.scene_problem.empty())
+      dl->AddText(ImVec2(origin.x + 10, origin.y + 10 + ImGui::GetFrameHeightWithSpacing()), IM_COL32(255, 120, 90, 255),
+                  ("Not rendering: " + view.frame.stats.scene_problem).c_str());
+  }
+  ImGui::End();
 }
 
 }  // namespace glint

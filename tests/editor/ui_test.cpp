@@ -10,7 +10,7 @@
 #include <epoxy/gl.h>
 // epoxy must come before GLFW.
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
-#include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
+#include <GLFW/glfw3.h>  // key codes (translated as the GLFW backend translates them)
 
 #include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
 
@@ -21,6 +21,7 @@
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
 #include "editor_test_util.h"
+#include "ui_test_context.h"
 #include "renderer/gl_context.h"
 #include "renderer/project_file.h"
 #include "tests/image_fixtures.h"
@@ -41,27 +42,17 @@ class UiTest : public ::testing::Test {
     state_.flow.projects_dir = kProjects;
     open_document(doc_, state_, kProjects / "default.glint");
     frame();
+    frame();  // the default dock layout is in place from the second frame
   }
   void TearDown() override {
     state_.thumbnails.clear();
     viewport_.reset();
-    ImGui::DestroyContext();
+    destroy_ui_context();
   }
 
   // A fresh ImGui context, as at the editor's start: no window exists before its first frame.
   void start_imgui() {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(800, 500);
-    io.DeltaTime = 1.0f / 60;
-    unsigned char* pixels;
-    int w, h;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(intptr_t(1)));
-    io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
-    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
-    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+    test::start_test_ui(1, ImVec2(800, 500));
   }
 
   // One UI frame, as the app runs it.
@@ -73,17 +64,20 @@ class UiTest : public ::testing::Test {
     error_open_ = ImGui::IsPopupOpen("Error");
     recovery_offer_open_ = ImGui::IsPopupOpen("Recover unsaved work?");
     editor_frame(doc_, state_, *viewport_);
+    test::settle_test_textures();
   }
+  // A GLFW key pressed in one frame and released in the next (queued as the backend does).
   void press(int key, bool ctrl = false, bool shift = false) {
     ImGuiIO& io = ImGui::GetIO();
-    io.KeyCtrl = ctrl;
-    io.KeyShift = shift;
-    io.KeysDown[key] = true;
+    test::set_modifiers(ctrl, shift);
+    io.AddKeyEvent(test::glfw_key(key), true);
     frame();
-    io.KeysDown[key] = false;
-    io.KeyCtrl = io.KeyShift = false;
+    io.AddKeyEvent(test::glfw_key(key), false);
+    test::set_modifiers(false, false);
     frame();
   }
+  void mouse_to(ImVec2 at) { ImGui::GetIO().AddMousePosEvent(at.x, at.y); }
+  void mouse_button(bool down) { ImGui::GetIO().AddMouseButtonEvent(0, down); }
   // Screen position of a world point in the viewport.
   ImVec2 screen(glm::vec3 p) {
     glm::vec2 v;
@@ -91,15 +85,14 @@ class UiTest : public ::testing::Test {
     return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
   }
   void click(ImVec2 at, bool ctrl = false) {
-    ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = at;
+    mouse_to(at);
     frame();
-    io.KeyCtrl = ctrl;
-    io.MouseDown[0] = true;
+    test::set_modifiers(ctrl, false);
+    mouse_button(true);
     frame();
-    io.MouseDown[0] = false;
+    mouse_button(false);
     frame();
-    io.KeyCtrl = false;
+    test::set_modifiers(false, false);
   }
   // Centre of button `n` (each `width` wide) in the last row of the auto-sized popup `name`.
   ImVec2 popup_button(const char* name, int n, float width) {
@@ -162,7 +155,11 @@ TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
     ImGui::GetIO().DisplaySize = display;
     frame();
     const ViewportView& v = state_.viewport;
-    EXPECT_NEAR(v.pos.x + v.size.x + std::min(state_.right_width, display.x * 0.35f), display.x, 0.5f);
+    // The dock space follows the window: the properties panel stays at its right edge.
+    const ImGuiWindow* properties = ImGui::FindWindowByName("Properties");
+    ASSERT_NE(properties, nullptr);
+    EXPECT_NEAR(properties->Pos.x + properties->Size.x, display.x, 0.5f);
+    EXPECT_LE(v.pos.x + v.size.x, properties->Pos.x + 0.5f);
     const unsigned tex = v.frame.display_texture;
     ASSERT_NE(tex, 0u);
     // The texture shown is the one traced at this frame's size (quarter resolution here).
@@ -178,7 +175,7 @@ TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
     for (int l = 0; l < data->CmdListsCount; ++l) {
       const ImDrawList* list = data->CmdLists[l];
       for (const ImDrawCmd& cmd : list->CmdBuffer) {
-        if (cmd.TextureId != reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex))) continue;
+        if (cmd.GetTexID() != static_cast<ImTextureID>(tex)) continue;
         ++images;
         ImVec2 lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
         for (unsigned i = 0; i < cmd.ElemCount; ++i) {
@@ -256,18 +253,17 @@ TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
   float len = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
   ImVec2 a = screen(c0), b = screen(c0 + glm::vec3(len, 0, 0));
   ImVec2 mid((a.x + b.x) / 2, (a.y + b.y) / 2);
-  ImGuiIO& io = ImGui::GetIO();
-  io.MousePos = mid;
+  mouse_to(mid);
   frame();
   EXPECT_EQ(state_.tools.gizmo_hover, 0);
-  io.MouseDown[0] = true;
+  mouse_button(true);
   frame();
   for (int i = 1; i <= 5; ++i) {  // drag along the handle's screen direction, one full length
-    io.MousePos = ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5);
+    mouse_to(ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5));
     frame();
     EXPECT_TRUE(state_.tools.interacting);
   }
-  io.MouseDown[0] = false;
+  mouse_button(false);
   frame();
   const glm::vec3 c1 = doc_.scene.spheres[ball].center;
   EXPECT_NEAR(c1.x - c0.x, len, len * 0.05f);
@@ -491,9 +487,9 @@ TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
   for (int i = 0; i < 3; ++i) frame();  // the prompt opens and its field takes the keyboard
   ASSERT_TRUE(path_prompt_open_);
   ImGuiIO& io = ImGui::GetIO();
-  io.KeysDown[GLFW_KEY_ENTER] = true;
+  io.AddKeyEvent(ImGuiKey_Enter, true);
   for (int i = 0; i < 40; ++i) frame();  // held past the key repeat delay
-  io.KeysDown[GLFW_KEY_ENTER] = false;
+  io.AddKeyEvent(ImGuiKey_Enter, false);
   frame();
   frame();
   EXPECT_FALSE(path_prompt_open_);

@@ -1,0 +1,274 @@
+// The Dear ImGui upgrade's promises, driven headlessly as tests/editor/ui_test.cpp does: queued
+// key events (no lost taps), the dock layout and its saved file, sizes that follow the content
+// scale, and ImGuizmo's rotate and scale gizmos on a quad as one undo step each.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
+#include <GLFW/glfw3.h>
+#include <imgui.h>  // before ImGuizmo.h, which needs its types
+#include <ImGuizmo.h>
+#include <imgui_internal.h>  // FindWindowByName: where the docked panels are
+
+#include "editor/editor_frame.h"
+#include "editor/scene_edits.h"
+#include "editor/ui.h"
+#include "editor/ui_layout.h"
+#include "editor/viewport_renderer.h"
+#include "editor_test_util.h"
+#include "renderer/gl_context.h"
+#include "ui_test_context.h"
+
+namespace glint {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kProjects = fs::path(GLINT_SOURCE_DIR) / "projects";
+
+class UiDockInputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    gl_ = HeadlessGLContext::create();
+    viewport_ = std::make_unique<ViewportRenderer>();
+    state_.viewport.resolution = ViewportResolution::quarter;  // tiny GL images
+    state_.flow.projects_dir = kProjects;
+  }
+  void TearDown() override {
+    state_.thumbnails.clear();
+    viewport_.reset();
+    if (ImGui::GetCurrentContext()) destroy_ui_context();
+  }
+  // A fresh UI at `scale` on a display of `display` pixels, the default project open.
+  void start(float scale, ImVec2 display, const fs::path& layout = {}) {
+    test::start_test_ui(scale, display);
+    state_.content_scale = scale;
+    if (!layout.empty()) {
+      std::string error;
+      load_layout(layout, error);
+      EXPECT_EQ(error, "");
+    }
+    ASSERT_TRUE(open_document(doc_, state_, kProjects / "default.glint"));
+    frame();
+    frame();
+  }
+  void frame() {
+    ImGui::NewFrame();
+    editor_frame(doc_, state_, *viewport_);
+    test::settle_test_textures();
+  }
+  const ImGuiWindow& window(const char* name) {
+    const ImGuiWindow* w = ImGui::FindWindowByName(name);
+    EXPECT_NE(w, nullptr) << name;
+    static ImGuiWindow none(ImGui::GetCurrentContext(), "none");
+    return w ? *w : none;
+  }
+  ImVec2 screen(glm::vec3 p) {
+    glm::vec2 v;
+    EXPECT_TRUE(project_to_viewport(doc_.scene.camera, {state_.viewport.size.x, state_.viewport.size.y}, p, v));
+    return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
+  }
+  void mouse_to(ImVec2 at) { ImGui::GetIO().AddMousePosEvent(at.x, at.y); }
+
+  // Walks the mouse from `from` towards `to` (one frame a step) until ImGuizmo's gizmo is
+  // under it; returns where, or nothing.
+  std::optional<ImVec2> find_gizmo_handle(ImVec2 from, ImVec2 to, int steps) {
+    for (int i = 0; i <= steps; ++i) {
+      ImVec2 p(from.x + (to.x - from.x) * i / steps, from.y + (to.y - from.y) * i / steps);
+      mouse_to(p);
+      frame();
+      if (ImGuizmo::IsOver()) return p;
+    }
+    return std::nullopt;
+  }
+  // Presses at `at`, moves by `by` in five frames, releases.
+  void drag(ImVec2 at, ImVec2 by) {
+    ImGuiIO& io = ImGui::GetIO();
+    mouse_to(at);
+    frame();
+    io.AddMouseButtonEvent(0, true);
+    frame();
+    for (int i = 1; i <= 5; ++i) {
+      mouse_to(ImVec2(at.x + by.x * i / 5, at.y + by.y * i / 5));
+      frame();
+      EXPECT_TRUE(state_.tools.interacting) << "step " << i;
+    }
+    io.AddMouseButtonEvent(0, false);
+    frame();
+    frame();
+  }
+  void undo_key(bool redo) {
+    ImGuiIO& io = ImGui::GetIO();
+    test::set_modifiers(true, redo);
+    io.AddKeyEvent(ImGuiKey_Z, true);
+    frame();
+    io.AddKeyEvent(ImGuiKey_Z, false);
+    test::set_modifiers(false, false);
+    frame();
+  }
+
+  std::unique_ptr<HeadlessGLContext> gl_;
+  std::unique_ptr<ViewportRenderer> viewport_;
+  Document doc_;
+  EditorState state_;
+};
+
+// Three Delete taps that all come and go before the next frame starts (a slow frame): each is a
+// queued press and release, so all three delete.
+TEST_F(UiDockInputTest, ThreeDeleteTapsWithinOneSlowFrameDeleteThreeObjects) {
+  start(1, ImVec2(800, 500));
+  const size_t n = doc_.scene.spheres.size();
+  ASSERT_GE(n, 3u);
+  doc_.selection = {SelectionKind::sphere, 0};
+  ImGuiIO& io = ImGui::GetIO();
+  const ImGuiKey del = test::glfw_key(GLFW_KEY_DELETE);
+  ASSERT_EQ(del, ImGuiKey_Delete);
+  for (int tap = 0; tap < 3; ++tap) {
+    io.AddKeyEvent(del, true);
+    io.AddKeyEvent(del, false);
+  }
+  // ImGui hands queued events out over the next frames, one press or release of a key a frame.
+  for (int i = 0; i < 8; ++i) frame();
+  EXPECT_EQ(doc_.scene.spheres.size(), n - 3);
+}
+
+// The default layout: the panels are docked in one dock space, outliner left of the viewport,
+// properties right of it, render statistics below it; nothing goes to the working directory.
+TEST_F(UiDockInputTest, DefaultLayoutDocksThePanels) {
+  start(1, ImVec2(1200, 700));
+  EXPECT_EQ(ImGui::GetIO().IniFilename, nullptr);
+  const ImGuiWindow& outliner = window(kOutlinerWindow);
+  const ImGuiWindow& properties = window(kPropertiesWindow);
+  const ImGuiWindow& stats = window(kStatsWindow);
+  const ImGuiWindow& view = window(kViewportWindow);
+  for (const ImGuiWindow* w : {&outliner, &properties, &stats, &view}) {
+    ASSERT_NE(w->DockNode, nullptr) << w->Name;
+    EXPECT_EQ(ImGui::DockNodeGetRootNode(w->DockNode), ImGui::DockNodeGetRootNode(view.DockNode)) << w->Name;
+  }
+  EXPECT_TRUE(view.DockNode->IsCentralNode());
+  EXPECT_NEAR(outliner.Size.x, kOutlinerWidth, 1.0f);
+  EXPECT_NEAR(properties.Size.x, kPropertiesWidth, 1.0f);
+  EXPECT_LE(outliner.Pos.x + outliner.Size.x, view.Pos.x + 0.5f);
+  EXPECT_GE(properties.Pos.x + 0.5f, view.Pos.x + view.Size.x);
+  EXPECT_GE(stats.Pos.y + 0.5f, view.Pos.y + view.Size.y);
+  EXPECT_NEAR(state_.viewport.pos.x, view.Pos.x, 0.5f);
+}
+
+// The layout is saved in the config folder given and restored from it: a layout saved on a wide
+// window keeps its outliner width on a narrow one, where the default layout would cap it.
+TEST_F(UiDockInputTest, LayoutIsSavedToAndLoadedFromTheConfigFolder) {
+  test::TempDir config;
+  const fs::path file = layout_file_path(config.path());
+  EXPECT_EQ(file, config.path() / "layout.ini");
+  start(1, ImVec2(1600, 900));
+  std::string error;
+  ASSERT_TRUE(save_layout_if_needed(file, /*force=*/true, error)) << error;
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  EXPECT_NE(text.str().find("[Docking]"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("[Window][Outliner]"), std::string::npos) << text.str();
+  destroy_ui_context();
+
+  start(1, ImVec2(800, 500));  // the default layout on a narrow window: the cap, 30% of 800
+  EXPECT_NEAR(window(kOutlinerWindow).Size.x, 800 * 0.3f, 2.0f);  // to the splitter's whole pixel
+  destroy_ui_context();
+
+  start(1, ImVec2(800, 500), file);
+  EXPECT_NEAR(window(kOutlinerWindow).Size.x, kOutlinerWidth, 1.0f);
+  EXPECT_NE(window(kViewportWindow).DockNode, nullptr);
+}
+
+// Content scale 2 on a display of twice the pixels: text, widgets and panels are all twice the
+// size, and the font is rasterised at that size (sharp), not stretched.
+TEST_F(UiDockInputTest, PanelsAndTextScaleWithTheContentScale) {
+  struct Sizes {
+    float font, frame, outliner, properties, stats_h, text_w, baked;
+  };
+  auto measure = [&](float scale) {
+    start(scale, ImVec2(1200 * scale, 700 * scale));
+    Sizes s{ImGui::GetFontSize(), ImGui::GetFrameHeight(), window(kOutlinerWindow).Size.x,
+            window(kPropertiesWindow).Size.x, window(kStatsWindow).Size.y, ImGui::CalcTextSize("Add sphere").x,
+            ImGui::GetFontBaked()->Size};
+    destroy_ui_context();
+    return s;
+  };
+  const Sizes one = measure(1), two = measure(2);
+  EXPECT_FLOAT_EQ(two.font, 2 * one.font);
+  EXPECT_NEAR(two.frame, 2 * one.frame, 1.0f);
+  EXPECT_NEAR(two.outliner, 2 * one.outliner, 1.0f);
+  EXPECT_NEAR(two.properties, 2 * one.properties, 1.0f);
+  EXPECT_NEAR(two.stats_h, 2 * one.stats_h, 1.0f);
+  EXPECT_NEAR(two.text_w, 2 * one.text_w, 0.05f * two.text_w);  // hinting may differ by a pixel
+  EXPECT_FLOAT_EQ(one.baked, one.font);
+  EXPECT_FLOAT_EQ(two.baked, two.font);
+}
+
+glm::vec3 edge(const Quad& q, int a, int b) { return q.corners[b] - q.corners[a]; }
+
+// The scale gizmo on a quad: dragging its x handle outwards lengthens the quad's first edge
+// only; the drag is one undo step.
+TEST_F(UiDockInputTest, ScaleGizmoStretchesAQuadAsOneUndoStep) {
+  start(1, ImVec2(1200, 700));
+  const int q = add_quad(doc_.scene);
+  doc_.selection = {SelectionKind::quad, q};
+  state_.tools.gizmo_mode = GizmoMode::scale;
+  frame();
+  frame();
+  const Quad before = doc_.scene.quads[q];
+  const glm::vec3 c = (before.corners[0] + before.corners[1] + before.corners[2] + before.corners[3]) * 0.25f;
+  const ImVec2 from = screen(c), dir = screen(c + glm::normalize(edge(before, 0, 2)));
+  const ImVec2 to(from.x + (dir.x - from.x) * 4, from.y + (dir.y - from.y) * 4);
+  // Past the centre's uniform-scale handle: start a third of the way out.
+  auto handle = find_gizmo_handle(ImVec2(from.x + (to.x - from.x) * 0.3f, from.y + (to.y - from.y) * 0.3f), to, 60);
+  ASSERT_TRUE(handle) << "no scale handle along the quad's x axis";
+  drag(*handle, ImVec2((dir.x - from.x) * 0.5f, (dir.y - from.y) * 0.5f));
+  const Quad after = doc_.scene.quads[q];
+  const float u0 = glm::length(edge(before, 0, 2)), u1 = glm::length(edge(after, 0, 2));
+  const float v0 = glm::length(edge(before, 0, 1)), v1 = glm::length(edge(after, 0, 1));
+  EXPECT_GT(u1, u0 * 1.05f);
+  EXPECT_NEAR(v1, v0, 1e-4f * v0);
+  undo_key(false);
+  EXPECT_EQ(doc_.scene.quads[q], before);
+  undo_key(true);
+  EXPECT_EQ(doc_.scene.quads[q], after);
+}
+
+// The rotate gizmo on a quad: a drag on a ring turns the quad about its centre (edges keep their
+// lengths, the centre stays); the drag is one undo step.
+TEST_F(UiDockInputTest, RotateGizmoTurnsAQuadAsOneUndoStep) {
+  start(1, ImVec2(1200, 700));
+  const int q = add_quad(doc_.scene);
+  doc_.selection = {SelectionKind::quad, q};
+  state_.tools.gizmo_mode = GizmoMode::rotate;
+  frame();
+  frame();
+  const Quad before = doc_.scene.quads[q];
+  const glm::vec3 c = (before.corners[0] + before.corners[1] + before.corners[2] + before.corners[3]) * 0.25f;
+  const ImVec2 from = screen(c), dir = screen(c + glm::normalize(edge(before, 0, 2)));
+  const ImVec2 to(from.x + (dir.x - from.x) * 4, from.y + (dir.y - from.y) * 4);
+  auto handle = find_gizmo_handle(from, to, 80);
+  ASSERT_TRUE(handle) << "no rotation ring along the quad's x axis";
+  // Across the ring (perpendicular to the way out from the centre).
+  const ImVec2 out(handle->x - from.x, handle->y - from.y);
+  drag(*handle, ImVec2(-out.y * 0.5f, out.x * 0.5f));
+  const Quad after = doc_.scene.quads[q];
+  EXPECT_NE(after, before);
+  const glm::vec3 c1 = (after.corners[0] + after.corners[1] + after.corners[2] + after.corners[3]) * 0.25f;
+  const float size = glm::length(edge(before, 0, 3));
+  EXPECT_LT(glm::length(c1 - c), 1e-4f * size);
+  for (auto [a, b] : {std::pair{0, 1}, std::pair{0, 2}, std::pair{0, 3}})
+    EXPECT_NEAR(glm::length(edge(after, a, b)), glm::length(edge(before, a, b)), 1e-4f * size) << a << b;
+  float moved = 0;
+  for (int i = 0; i < 4; ++i) moved = std::max(moved, glm::length(after.corners[i] - before.corners[i]));
+  EXPECT_GT(moved, 0.05f * size);
+  undo_key(false);
+  EXPECT_EQ(doc_.scene.quads[q], before);
+  undo_key(true);
+  EXPECT_EQ(doc_.scene.quads[q], after);
+}
+
+}  // namespace
+}  // namespace glint
