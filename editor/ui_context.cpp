@@ -24,6 +24,7 @@ void create_ui_context(float scale) {
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // the layout is loaded and saved atomically by ui_layout
   io.ConfigFlags |= ImGuiConfigFlags_DockingEnable;
+  io.ConfigWindowsMoveFromTitleBarOnly = true;  // a drag in the viewport never moves its window
   // Dear ImGui's embedded scalable font: rasterised at whatever size the scale asks for.
   io.Fonts->AddFontDefaultVector();
   g_scale = 0;
@@ -49,6 +50,8 @@ void set_content_scale(float scale) {
 }
 
 float content_scale() { return g_scale; }
+
+float ui_units(float units) { return units * ImGui::GetStyle().FontScaleDpi; }
 
 float content_scale_override() {
   static bool warned = false;

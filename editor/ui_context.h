@@ -15,6 +15,9 @@ void destroy_ui_context();
 // Cheap when the scale is unchanged; call it whenever the content scale may have changed.
 void set_content_scale(float scale);
 float content_scale();
+// A size in ImGui units (the sizes at scale 1) in pixels at the current scale, for the fixed
+// widths of buttons, labels and thumbnails.
+float ui_units(float units);
 
 // GLINT_CONTENT_SCALE (a number from 0.5 to 4), which overrides the monitor's content scale
 // (for screenshots under Xvfb, which reports 1); 0 when unset or invalid (a warning

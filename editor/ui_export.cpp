@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 
@@ -36,7 +37,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     s.width = doc.scene.film.width;
     s.height = doc.scene.film.height;
   }
-  ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_Appearing);
+  ImGui::SetNextWindowSize(ImVec2(ui_units(460), 0), ImGuiCond_Appearing);
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (!ImGui::Begin("Export render", &state.export_ui.show, ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse)) {
@@ -45,7 +46,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   }
   const bool running = export_running(state);
   ImGui::BeginDisabled(running);
-  ImGui::PushItemWidth(-130);
+  ImGui::PushItemWidth(-ui_units(130));
   int size[2] = {s.width, s.height};
   if (ImGui::InputInt2("Size (pixels)", size)) {
     s.width = std::clamp(size[0], 1, 16384);
@@ -93,13 +94,13 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     std::snprintf(overlay, sizeof overlay, "%lld spp, %.1f s", static_cast<long long>(job.samples()),
                   job.elapsed_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
-    if (ImGui::Button("Cancel", ImVec2(120, 0))) {
+    if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";
     }
   } else {
     ImGui::BeginDisabled(!problem.empty());
-    if (ImGui::Button("Render", ImVec2(120, 0))) {
+    if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
       try {
         s.estimator = state.viewport.estimator;
         state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker, state.trace_backend);

@@ -3,6 +3,7 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 namespace {
@@ -87,7 +88,7 @@ void draw_outliner(Document& doc, EditorState& state) {
     for (int i = 0; i < int(s.textures.size()); ++i) {
       unsigned thumb = state.thumbnails.get(resolve_asset_path(s, s.textures[i].path), 64);
       if (thumb) {
-        ImGui::Image(static_cast<ImTextureID>(thumb), ImVec2(18, 18));
+        ImGui::Image(static_cast<ImTextureID>(thumb), ImVec2(ui_units(18), ui_units(18)));
         ImGui::SameLine();
       }
       row(doc, state, {SelectionKind::texture, i}, s.textures[i].name);

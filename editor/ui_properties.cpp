@@ -4,6 +4,7 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 #include "renderer/scene_fields.h"
 
 namespace glint {
@@ -71,11 +72,11 @@ void texture_slot(Document& doc, EditorState& state, int material, int slot, con
   ImGui::PushID(slot);
   int t = find_texture(doc.scene, value);
   unsigned thumb = t >= 0 ? state.thumbnails.get(resolve_asset_path(doc.scene, doc.scene.textures[t].path), 64) : 0;
-  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(32, 32));
-  else ImGui::Dummy(ImVec2(32, 32));
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(ui_units(32), ui_units(32)));
+  else ImGui::Dummy(ImVec2(ui_units(32), ui_units(32)));
   ImGui::SameLine();
   ImGui::BeginGroup();
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ui_units(110));
   name_combo(label, value, doc.scene.textures, true);
   if (ImGui::SmallButton("File...")) {
     state.flow.slot_material = material;
@@ -161,7 +162,7 @@ void texture_properties(Document& doc, EditorState& state, int i) {
   name_field(doc, state, doc.selection);
   ImGui::TextWrapped("File: %s", t.path.c_str());
   unsigned thumb = state.thumbnails.get(resolve_asset_path(doc.scene, t.path), 160);
-  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(160, 160));
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(ui_units(160), ui_units(160)));
   else ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "cannot read the image");
 }
 
@@ -224,7 +225,7 @@ void camera_properties(Document& doc) {
 void draw_properties(Document& doc, EditorState& state) {
   Selection sel = doc.selection;
   Scene& s = doc.scene;
-  ImGui::PushItemWidth(-110);
+  ImGui::PushItemWidth(-ui_units(110));
   auto valid = [](int i, size_t n) { return i >= 0 && i < static_cast<int>(n); };
   if (sel.kind == SelectionKind::sphere && valid(sel.index, s.spheres.size())) {
     section_title("Sphere");

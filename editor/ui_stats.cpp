@@ -11,7 +11,8 @@ namespace glint {
 
 void plot_time_series(const char* plot_id, const TimeSeries& series, bool log_y, float height) {
   if (!ImPlot::BeginPlot(plot_id, ImVec2(-1, height), ImPlotFlags_NoMenus | ImPlotFlags_NoBoxSelect)) return;
-  ImPlot::SetupAxes("seconds", series.label.c_str(), ImPlotAxisFlags_AutoFit, ImPlotAxisFlags_AutoFit);
+  // The legend names the curve; the y axis stays unlabelled (a long name would be cut).
+  ImPlot::SetupAxes("seconds", nullptr, ImPlotAxisFlags_AutoFit, ImPlotAxisFlags_AutoFit);
   if (log_y) ImPlot::SetupAxisScale(ImAxis_Y1, ImPlotScale_Log10);
   if (!series.empty())
     ImPlot::PlotLine(series.label.c_str(), series.t.data(), series.value.data(), static_cast<int>(series.t.size()));

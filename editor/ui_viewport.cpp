@@ -12,6 +12,7 @@
 #include "editor/picking.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 #include "editor/ui_layout.h"
 
 namespace glint {
@@ -63,13 +64,13 @@ void draw_gizmo(const Gizmo& g, int hover, int active) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   for (int a = 0; a < 3; ++a) {
     if (!g.end_visible[a]) continue;
-    float thick = (a == hover || a == active) ? 5.0f : 3.0f;
+    const float thick = ui_units((a == hover || a == active) ? 5.0f : 3.0f);
     ImU32 col = (a == active) ? IM_COL32(255, 230, 80, 255) : kAxisColors[a];
     dl->AddLine(g.origin, g.ends[a], IM_COL32(0, 0, 0, 160), thick + 2);
     dl->AddLine(g.origin, g.ends[a], col, thick);
-    dl->AddCircleFilled(g.ends[a], thick + 3, col);
+    dl->AddCircleFilled(g.ends[a], thick + ui_units(3), col);
   }
-  dl->AddCircleFilled(g.origin, 4, IM_COL32(255, 255, 255, 220));
+  dl->AddCircleFilled(g.origin, ui_units(4), IM_COL32(255, 255, 255, 220));
 }
 
 // The quad's own frame: x along its first edge, z its normal, at its centre. Rotating or
@@ -102,6 +103,7 @@ void quad_gizmo(Document& doc, EditorState& state, ImVec2 origin, ImVec2 size) {
     t.quad_matrix = t.quad_start_frame;
   }
   ImGuizmo::SetOrthographic(false);
+  ImGuizmo::AllowAxisFlip(false);  // the handles stay on the quad's +x, +y, +z sides
   ImGuizmo::SetDrawlist(ImGui::GetWindowDrawList());
   ImGuizmo::SetRect(origin.x, origin.y, size.x, size.y);
   const ImGuizmo::OPERATION op = t.gizmo_mode == GizmoMode::rotate ? ImGuizmo::ROTATE : ImGuizmo::SCALE;
@@ -188,13 +190,22 @@ void draw_viewport(Document& doc, EditorState& state) {
   ImGui::BeginChild("##viewport overlay", size, ImGuiChildFlags_None,
                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
 
-  // One item over the whole image: ImGui then knows a drag here is in progress.
-  ImGui::InvisibleButton("##viewport", size,
-                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
-                             ImGuiButtonFlags_MouseButtonMiddle);
-  const bool hovered = ImGui::IsItemHovered();
+  // Over ImGuizmo's gizmo (where it was last frame) or dragging it, the gizmo takes the mouse:
+  // ImGuizmo starts a drag only where no ImGui item is hovered.
+  const bool quad_selected = doc.selection.kind == SelectionKind::quad;
+  const bool quad_gizmo_busy =
+      quad_selected && state.tools.gizmo_mode != GizmoMode::translate && (state.tools.quad_drag || ImGuizmo::IsOver());
+  // Else one item over the whole image: ImGui then knows a drag here is in progress.
+  bool hovered = false;
+  if (quad_gizmo_busy) {
+    ImGui::Dummy(size);
+  } else {
+    ImGui::InvisibleButton("##viewport", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
+    hovered = ImGui::IsItemHovered();
+  }
   quad_gizmo(doc, state, origin, size);
-  const bool quad_gizmo_busy = state.tools.quad_drag || (state.tools.gizmo_mode != GizmoMode::translate && ImGuizmo::IsOver());
   Gizmo gizmo = state.tools.gizmo_mode == GizmoMode::translate || doc.selection.kind != SelectionKind::quad
                     ? make_gizmo(doc, origin, size)
                     : Gizmo{};
@@ -203,7 +214,7 @@ void draw_viewport(Document& doc, EditorState& state) {
   const bool focusing = state.tools.focus_tool || io.KeyCtrl;
   if (gizmo.visible && hovered && !focusing && state.tools.gizmo_axis < 0 && state.tools.camera_button < 0)
     for (int a = 0; a < 3; ++a)
-      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < 7) state.tools.gizmo_hover = a;
+      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < ui_units(7)) state.tools.gizmo_hover = a;
 
   // Presses start a gizmo drag or a camera gesture.
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.tools.gizmo_hover >= 0) {

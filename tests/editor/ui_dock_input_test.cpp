@@ -189,9 +189,11 @@ TEST_F(UiDockInputTest, PanelsAndTextScaleWithTheContentScale) {
   };
   auto measure = [&](float scale) {
     start(scale, ImVec2(1200 * scale, 700 * scale));
+    ImGui::NewFrame();  // fonts and text sizes are asked within a frame
     Sizes s{ImGui::GetFontSize(), ImGui::GetFrameHeight(), window(kOutlinerWindow).Size.x,
             window(kPropertiesWindow).Size.x, window(kStatsWindow).Size.y, ImGui::CalcTextSize("Add sphere").x,
             ImGui::GetFontBaked()->Size};
+    ImGui::EndFrame();
     destroy_ui_context();
     return s;
   };
@@ -221,8 +223,8 @@ TEST_F(UiDockInputTest, ScaleGizmoStretchesAQuadAsOneUndoStep) {
   const glm::vec3 c = (before.corners[0] + before.corners[1] + before.corners[2] + before.corners[3]) * 0.25f;
   const ImVec2 from = screen(c), dir = screen(c + glm::normalize(edge(before, 0, 2)));
   const ImVec2 to(from.x + (dir.x - from.x) * 4, from.y + (dir.y - from.y) * 4);
-  // Past the centre's uniform-scale handle: start a third of the way out.
-  auto handle = find_gizmo_handle(ImVec2(from.x + (to.x - from.x) * 0.3f, from.y + (to.y - from.y) * 0.3f), to, 60);
+  // From outside inwards: the first part of the gizmo met is the x handle's end.
+  auto handle = find_gizmo_handle(to, from, 80);
   ASSERT_TRUE(handle) << "no scale handle along the quad's x axis";
   drag(*handle, ImVec2((dir.x - from.x) * 0.5f, (dir.y - from.y) * 0.5f));
   const Quad after = doc_.scene.quads[q];
@@ -247,10 +249,14 @@ TEST_F(UiDockInputTest, RotateGizmoTurnsAQuadAsOneUndoStep) {
   frame();
   const Quad before = doc_.scene.quads[q];
   const glm::vec3 c = (before.corners[0] + before.corners[1] + before.corners[2] + before.corners[3]) * 0.25f;
-  const ImVec2 from = screen(c), dir = screen(c + glm::normalize(edge(before, 0, 2)));
+  // Along the diagonal of the quad's frame: the rings about x and y are seen edge-on along its
+  // axes, and would turn nothing for a drag across them.
+  const glm::vec3 x = glm::normalize(edge(before, 0, 2)), y = glm::cross(glm::normalize(glm::cross(edge(before, 0, 2), edge(before, 0, 1))), x);
+  const ImVec2 from = screen(c), dir = screen(c + glm::normalize(x + y));
   const ImVec2 to(from.x + (dir.x - from.x) * 4, from.y + (dir.y - from.y) * 4);
-  auto handle = find_gizmo_handle(from, to, 80);
-  ASSERT_TRUE(handle) << "no rotation ring along the quad's x axis";
+  // From outside inwards: the first ring met is the outermost (about the view axis).
+  auto handle = find_gizmo_handle(to, from, 80);
+  ASSERT_TRUE(handle) << "no rotation ring on the quad's diagonal";
   // Across the ring (perpendicular to the way out from the centre).
   const ImVec2 out(handle->x - from.x, handle->y - from.y);
   drag(*handle, ImVec2(-out.y * 0.5f, out.x * 0.5f));
