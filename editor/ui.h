@@ -9,7 +9,6 @@
 // once the viewport has rendered the edited scene.
 #pragma once
 
-#include <array>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -51,17 +50,8 @@ struct ViewportView {
   ViewportFrame frame;
 };
 
-// The gizmo the selection shows: translate (spheres and quads), rotate or scale (quads).
-enum class GizmoMode { translate, rotate, scale };
-
 // The viewport's tools and the drags in progress.
 struct ViewportTools {
-  GizmoMode gizmo_mode = GizmoMode::translate;
-  // An ImGuizmo rotate/scale drag of a quad: its corners and frame when it started, and the
-  // frame ImGuizmo edits.
-  bool quad_drag = false;
-  std::array<glm::vec3, 4> quad_start_corners{};
-  glm::mat4 quad_start_frame{1}, quad_matrix{1};
   bool focus_tool = false;   // a click sets the focus distance instead of selecting
   bool interacting = false;  // a gizmo, camera or fly gesture is in progress (one undo step)
   int gizmo_axis = -1;       // axis being dragged, -1 none

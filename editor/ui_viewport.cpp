@@ -1,12 +1,7 @@
-// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list
-// (spheres and quads), ImGuizmo's rotate and scale gizmos for quads, mouse navigation (orbit,
-// pan, zoom), and the rendered image under them.
+// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list,
+// mouse navigation (orbit, pan, zoom), and the rendered image under them.
 #include <cmath>
 
-#include <imgui.h>  // before ImGuizmo.h, which needs its types
-#include <ImGuizmo.h>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include "editor/camera_control.h"
 #include "editor/picking.h"
@@ -73,67 +68,6 @@ void draw_gizmo(const Gizmo& g, int hover, int active) {
   dl->AddCircleFilled(g.origin, ui_units(4), IM_COL32(255, 255, 255, 220));
 }
 
-// The quad's own frame: x along its first edge, z its normal, at its centre. Rotating or
-// scaling this frame with ImGuizmo rotates or scales the quad about its centre along its edges.
-glm::mat4 quad_frame(const Quad& q) {
-  const glm::vec3 c = (q.corners[0] + q.corners[1] + q.corners[2] + q.corners[3]) * 0.25f;
-  const glm::vec3 u = q.corners[2] - q.corners[0], v = q.corners[1] - q.corners[0];
-  const glm::vec3 x = glm::normalize(u), z = glm::normalize(glm::cross(u, v)), y = glm::cross(z, x);
-  return glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(c, 1));
-}
-
-// ImGuizmo's rotate or scale gizmo on the selected quad. The drag is applied to the corners the
-// quad had when it started (no drift from re-deriving the frame each frame); while it lasts the
-// tools are "interacting", so the whole drag is one undo step.
-void quad_gizmo(Document& doc, EditorState& state, ImVec2 origin, ImVec2 size) {
-  ViewportTools& t = state.tools;
-  const bool quad = doc.selection.kind == SelectionKind::quad && doc.selection.index >= 0 &&
-                    doc.selection.index < int(doc.scene.quads.size());
-  if (!quad || t.gizmo_mode == GizmoMode::translate) {
-    t.quad_drag = false;
-    return;
-  }
-  Quad& q = doc.scene.quads[doc.selection.index];
-  const Camera& cam = doc.scene.camera;
-  const glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
-  const glm::mat4 proj = glm::perspective(glm::radians(cam.vfov_deg), size.x / std::max(1.0f, size.y), 0.01f, 1000.0f);
-  if (!t.quad_drag) {
-    t.quad_start_corners = q.corners;
-    t.quad_start_frame = quad_frame(q);
-    t.quad_matrix = t.quad_start_frame;
-  }
-  ImGuizmo::SetOrthographic(false);
-  ImGuizmo::AllowAxisFlip(false);  // the handles stay on the quad's +x, +y, +z sides
-  ImGuizmo::SetDrawlist(ImGui::GetWindowDrawList());
-  ImGuizmo::SetRect(origin.x, origin.y, size.x, size.y);
-  const ImGuizmo::OPERATION op = t.gizmo_mode == GizmoMode::rotate ? ImGuizmo::ROTATE : ImGuizmo::SCALE;
-  ImGuizmo::Manipulate(glm::value_ptr(view), glm::value_ptr(proj), op, ImGuizmo::LOCAL, glm::value_ptr(t.quad_matrix));
-  if (ImGuizmo::IsUsing()) {
-    t.quad_drag = true;
-    t.interacting = true;
-    const glm::mat4 change = t.quad_matrix * glm::inverse(t.quad_start_frame);
-    for (int i = 0; i < 4; ++i) {
-      const glm::vec3 c = glm::vec3(change * glm::vec4(t.quad_start_corners[i], 1));
-      if (q.corners[i] != c) q.corners[i] = c;
-    }
-  } else {
-    t.quad_drag = false;
-  }
-}
-
-// Move, Rotate, Scale: which gizmo the selection shows (rotate and scale are for quads).
-void draw_gizmo_toolbar(EditorState& state) {
-  ImGui::SetCursorPos(ImVec2(ImGui::GetStyle().ItemSpacing.x, ImGui::GetStyle().ItemSpacing.y));
-  const char* names[] = {"Move", "Rotate", "Scale"};
-  for (int i = 0; i < 3; ++i) {
-    if (i) ImGui::SameLine();
-    const bool on = int(state.tools.gizmo_mode) == i;
-    if (on) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
-    if (ImGui::SmallButton(names[i])) state.tools.gizmo_mode = GizmoMode(i);
-    if (on) ImGui::PopStyleColor();
-  }
-}
-
 }  // namespace
 
 bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm::vec2& out) {
@@ -169,7 +103,6 @@ void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focu
 
 void draw_viewport(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  ImGuizmo::BeginFrame();
   // A dockable window without a background (the image goes under it, show_viewport_image);
   // its input and overlays live in a child window that covers it, drawn above that image.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
@@ -190,25 +123,12 @@ void draw_viewport(Document& doc, EditorState& state) {
   ImGui::BeginChild("##viewport overlay", size, ImGuiChildFlags_None,
                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
 
-  // Over ImGuizmo's gizmo (where it was last frame) or dragging it, the gizmo takes the mouse:
-  // ImGuizmo starts a drag only where no ImGui item is hovered.
-  const bool quad_selected = doc.selection.kind == SelectionKind::quad;
-  const bool quad_gizmo_busy =
-      quad_selected && state.tools.gizmo_mode != GizmoMode::translate && (state.tools.quad_drag || ImGuizmo::IsOver());
-  // Else one item over the whole image: ImGui then knows a drag here is in progress.
-  bool hovered = false;
-  if (quad_gizmo_busy) {
-    ImGui::Dummy(size);
-  } else {
-    ImGui::InvisibleButton("##viewport", size,
-                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
-                               ImGuiButtonFlags_MouseButtonMiddle);
-    hovered = ImGui::IsItemHovered();
-  }
-  quad_gizmo(doc, state, origin, size);
-  Gizmo gizmo = state.tools.gizmo_mode == GizmoMode::translate || doc.selection.kind != SelectionKind::quad
-                    ? make_gizmo(doc, origin, size)
-                    : Gizmo{};
+  // One item over the whole image: ImGui then knows a drag here is in progress.
+  ImGui::InvisibleButton("##viewport", size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                             ImGuiButtonFlags_MouseButtonMiddle);
+  const bool hovered = ImGui::IsItemHovered();
+  Gizmo gizmo = make_gizmo(doc, origin, size);
   state.tools.gizmo_hover = -1;
   // Ctrl+click and the focus tool always focus, even on the gizmo.
   const bool focusing = state.tools.focus_tool || io.KeyCtrl;
@@ -224,7 +144,7 @@ void draw_viewport(Document& doc, EditorState& state) {
     const ImVec2& e = gizmo.ends[state.tools.gizmo_axis];
     state.tools.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
     state.tools.gizmo_length = gizmo.length;
-  } else if (hovered && state.tools.camera_button < 0 && !quad_gizmo_busy) {
+  } else if (hovered && state.tools.camera_button < 0) {
     for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
       if (ImGui::IsMouseClicked(b)) {
         state.tools.camera_button = b;
@@ -285,7 +205,6 @@ void draw_viewport(Document& doc, EditorState& state) {
   if (state.tools.focus_tool)
     dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255),
                 "Focus tool: click a surface");
-  draw_gizmo_toolbar(state);
   ImGui::EndChild();
   ImGui::End();
 }
