@@ -18,6 +18,8 @@
 #include "editor/file_dialogs.h"
 #include "editor/recent_and_recovery.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
+#include "editor/ui_layout.h"
 #include "editor/viewport_renderer.h"
 #include "renderer/backend_choice.h"
 #include "renderer/image.h"
@@ -100,26 +102,46 @@ void close_windows(const Windows& w) {
   glfwTerminate();
 }
 
-void start_imgui(GLFWwindow* window) {
-  IMGUI_CHECKVERSION();
-  ImGui::CreateContext();
-  ImGuiIO& io = ImGui::GetIO();
-  io.IniFilename = nullptr;  // fixed layout: nothing to remember
-  ImGui::StyleColorsDark();
+// The monitor's content scale (GLINT_CONTENT_SCALE overrides it).
+float window_content_scale(GLFWwindow* window) {
+  if (const float s = content_scale_override()) return s;
   float xscale = 1, yscale = 1;
   glfwGetWindowContentScale(window, &xscale, &yscale);
-  if (xscale > 1.01f) {  // larger text on HiDPI screens where GLFW does not scale framebuffers
-    ImGui::GetStyle().ScaleAllSizes(xscale);
-    io.FontGlobalScale = xscale;
+  return xscale;
+}
+
+// The layout comes from the user's config folder, except in screenshot runs, which show the
+// default layout and leave the user's state alone.
+void start_imgui(GLFWwindow* window, EditorState& state, const fs::path& layout_file) {
+  state.content_scale = window_content_scale(window);
+  create_ui_context(state.content_scale);
+  state.content_scale = content_scale();
+  if (!layout_file.empty()) {
+    std::string error;
+    load_layout(layout_file, error);
+    if (!error.empty()) std::fprintf(stderr, "glint: %s\n", error.c_str());
   }
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 450");
 }
 
+// A window moved to a monitor of another scale re-rasterises the font and rescales the style.
+void follow_content_scale(GLFWwindow* window, EditorState& state) {
+  set_content_scale(window_content_scale(window));
+  state.content_scale = content_scale();
+}
+
+void save_layout(const fs::path& layout_file, bool force) {
+  if (layout_file.empty()) return;
+  std::string error;
+  if (!save_layout_if_needed(layout_file, force, error) && !error.empty())
+    std::fprintf(stderr, "glint: cannot save the window layout: %s\n", error.c_str());
+}
+
 void stop_imgui() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
+  destroy_ui_context();
 }
 
 // The state at start: file dialogs, recent files, the examples folder, the command line's
@@ -337,12 +359,13 @@ int run_editor(const EditorOptions& options) {
   const bool screenshot_mode = !options.screenshot.empty();
   const std::optional<Windows> windows = open_windows(options, screenshot_mode);
   if (!windows) return 1;
-  start_imgui(windows->main);
   glfwSetDropCallback(windows->main, on_drop);
+  const fs::path layout_file = screenshot_mode ? fs::path() : layout_file_path();
   int exit_code = 0;
   {
     Document doc;
     EditorState state;
+    start_imgui(windows->main, state, layout_file);
     if (!start_session(doc, state, options, windows->worker)) exit_code = 1;
     std::unique_ptr<ViewportRenderer> viewport = make_viewport(state, options);
     if (!viewport) exit_code = 1;
@@ -354,6 +377,7 @@ int run_editor(const EditorOptions& options) {
       const Poll poll = poll_window(windows->main, doc, state, screenshot_mode, fb_w, fb_h);
       if (poll == Poll::stop) break;
       if (poll == Poll::minimised) continue;
+      follow_content_scale(windows->main, state);
       begin_imgui_frame();
       for (const fs::path& file : std::exchange(g_dropped, {})) drop_file(doc, state, file);
       // Widgets edit the document, the viewport renders it, the export steps, undo is derived,
@@ -368,11 +392,13 @@ int run_editor(const EditorOptions& options) {
       glfwSwapBuffers(windows->main);
       update_title(windows->main, doc, title);
       if (state.autosave) state.autosave->update(doc, glfwGetTime());
+      save_layout(layout_file, false);
       if (!screenshot_mode && options.frames && frame >= options.frames) break;
     }
     end_session(state, viewport);
+    save_layout(layout_file, true);
+    stop_imgui();
   }
-  stop_imgui();
   close_windows(*windows);
   return exit_code;
 }

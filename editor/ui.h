@@ -1,10 +1,10 @@
 // The editor's panels. Each takes the Document and the EditorState and needs only an ImGui
 // context (and a current GL context for thumbnails): no GLFW, so tests drive them headlessly.
 //
-// draw_editor_ui() is the first step of a frame (editor/editor_frame.h): it lays out fixed
-// panels (no docking) and runs them in order: shortcuts, menu bar, outliner, properties, status
-// bar, the viewport's mouse input (selection, gizmo, camera), the export dialog, the document
-// modals, and last the recovery offer. It edits the document and this state; it does not
+// draw_editor_ui() is the first step of a frame (editor/editor_frame.h): it lays out the dock
+// space (editor/ui_layout.h) and runs the panels in order: shortcuts, menu bar, status bar,
+// outliner, properties, render statistics, the viewport's mouse input (selection, gizmo,
+// camera), the export dialog, the document modals, and last the recovery offer. It edits the document and this state; it does not
 // render. The viewport image it shows is the one show_viewport_image() puts under the panels
 // once the viewport has rendered the edited scene.
 #pragma once
@@ -22,6 +22,7 @@
 #include "editor/document.h"
 #include "editor/export_job.h"
 #include "editor/recent_and_recovery.h"
+#include "editor/render_stats_history.h"
 #include "editor/thumbnails.h"
 #include "editor/viewport_frame.h"
 #include "renderer/render_options.h"
@@ -125,7 +126,6 @@ struct Renaming {
 };
 
 struct EditorState {
-  float left_width = 270, right_width = 340;  // side panels, in ImGui units
   ViewportView viewport;
   ViewportTools tools;
   DocumentFlow flow;
@@ -152,6 +152,10 @@ struct EditorState {
   // The entry point the viewport and exports trace with (renderer/backend_choice.h).
   TraceBackend trace_backend = TraceBackend::fragment;
   ThumbnailCache thumbnails;
+  RenderStatsHistory stats_history;  // the Render statistics panel's curves
+  // Monitor content scale the UI is drawn at (editor/ui_context.h); the default layout's
+  // panel sizes are multiplied by it.
+  float content_scale = 1;
 };
 
 // Step 1 of editor_frame: every panel's input and widgets, in order. Renders nothing.
@@ -162,6 +166,10 @@ void draw_main_menu(Document& doc, EditorState& state);
 void draw_outliner(Document& doc, EditorState& state);
 void draw_properties(Document& doc, EditorState& state);
 void draw_status_bar(Document& doc, EditorState& state);
+void draw_render_stats(Document& doc, EditorState& state);
+// One curve of the Render statistics panel, `height` ImGui units tall; log_y: a log10 y axis
+// (for errors). Any series can be fed to it (editor/render_stats_history.h).
+void plot_time_series(const char* plot_id, const TimeSeries& series, bool log_y, float height);
 void draw_document_modals(Document& doc, EditorState& state);
 void draw_recovery_offer(Document& doc, EditorState& state);
 void draw_export_dialog(Document& doc, EditorState& state);

@@ -3,6 +3,7 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 namespace {
@@ -41,13 +42,13 @@ void draw_delete_prompt(Document& doc, EditorState& state) {
   if (valid) preview.materials.erase(preview.materials.begin() + p.material.index);
   ImGui::Text("Deleting it gives them the neutral material '%s'.", default_material(preview).c_str());
   ImGui::Spacing();
-  if (ImGui::Button("Delete", ImVec2(120, 0))) {
+  if (ImGui::Button("Delete", ImVec2(ui_units(120), 0))) {
     ImGui::CloseCurrentPopup();
     if (valid) doc.selection = remove(doc.scene, p.material);
     p = {};
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel", ImVec2(120, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+  if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0)) || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
     ImGui::CloseCurrentPopup();
     p = {};
   }

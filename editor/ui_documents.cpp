@@ -5,6 +5,7 @@
 #include "editor/file_dialogs.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
 #include "renderer/scene_images.h"
@@ -216,7 +217,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
     ImGui::Text("%s has unsaved changes.", doc.display_name().c_str());
     ImGui::TextUnformatted("Save them first?");
     ImGui::Spacing();
-    if (ImGui::Button("Save", ImVec2(90, 0))) {
+    if (ImGui::Button("Save", ImVec2(ui_units(90), 0))) {
       ImGui::CloseCurrentPopup();
       if (doc.path().empty()) {
         choose_file(doc, state, FilePurpose::save_project_as);  // continues the action when saved
@@ -229,14 +230,14 @@ void draw_document_modals(Document& doc, EditorState& state) {
       }
     }
     ImGui::SameLine();
-    if (ImGui::Button("Discard", ImVec2(90, 0))) {
+    if (ImGui::Button("Discard", ImVec2(ui_units(90), 0))) {
       ImGui::CloseCurrentPopup();
       DocAction next = state.flow.pending;
       state.flow.pending = DocAction::none;
       perform(doc, state, next, state.flow.pending_path);
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    if (ImGui::Button("Cancel", ImVec2(ui_units(90), 0)) || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
       ImGui::CloseCurrentPopup();
       state.flow.pending = DocAction::none;
     }
@@ -247,7 +248,7 @@ void draw_document_modals(Document& doc, EditorState& state) {
     ImGui::OpenPopup(kPathPopup);
     state.flow.prompt.request_open = false;
   }
-  ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+  ImGui::SetNextWindowSize(ImVec2(ui_units(560), 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(kPathPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::TextUnformatted(state.flow.prompt.title.c_str());
     ImGui::TextDisabled("No file dialog is available here: type the path.");
@@ -255,13 +256,13 @@ void draw_document_modals(Document& doc, EditorState& state) {
     ImGui::SetNextItemWidth(-1);
     bool enter = ImGui::InputText("##path", state.flow.prompt.buffer, sizeof state.flow.prompt.buffer,
                                   ImGuiInputTextFlags_EnterReturnsTrue);
-    if (ImGui::Button("OK", ImVec2(90, 0)) || enter) {
+    if (ImGui::Button("OK", ImVec2(ui_units(90), 0)) || enter) {
       ImGui::CloseCurrentPopup();
       std::string chosen = state.flow.prompt.buffer;
       if (!chosen.empty()) apply_chosen_file(doc, state, state.flow.prompt.purpose, chosen);
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel", ImVec2(90, 0)) || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    if (ImGui::Button("Cancel", ImVec2(ui_units(90), 0)) || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
       ImGui::CloseCurrentPopup();
       if (state.flow.prompt.purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
     }
@@ -273,17 +274,17 @@ void draw_document_modals(Document& doc, EditorState& state) {
     state.messages.open_error = false;
     state.messages.error_enter_released = false;
   }
-  ImGui::SetNextWindowSize(ImVec2(520, 0), ImGuiCond_Appearing);
+  ImGui::SetNextWindowSize(ImVec2(ui_units(520), 0), ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal(kErrorPopup, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextUnformatted(state.messages.error.c_str());
     ImGui::PopTextWrapPos();
     // The Enter that confirmed a typed path opens this box in the same frame (and may repeat
     // while held): only a press that follows a release closes it.
-    const int enter = ImGui::GetKeyIndex(ImGuiKey_Enter);
+    const ImGuiKey enter = ImGuiKey_Enter;
     const bool enter_closes = state.messages.error_enter_released && ImGui::IsKeyPressed(enter, false);
     if (!ImGui::IsKeyDown(enter)) state.messages.error_enter_released = true;
-    if (ImGui::Button("OK", ImVec2(90, 0)) || enter_closes) ImGui::CloseCurrentPopup();
+    if (ImGui::Button("OK", ImVec2(ui_units(90), 0)) || enter_closes) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
   draw_delete_prompt(doc, state);

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 
@@ -59,7 +60,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   if (s.output.empty()) s = default_export_settings(doc, state);
   // Auto-sized: the settings, the progress with its ETA, Cancel and the result always show
   // without scrolling.
-  ImGui::SetNextWindowSizeConstraints(ImVec2(520, 0), ImVec2(FLT_MAX, FLT_MAX));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(ui_units(520), 0), ImVec2(FLT_MAX, FLT_MAX));
   ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
                           ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
   if (!ImGui::Begin("Export render", &state.export_ui.show,
@@ -69,7 +70,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   }
   const bool running = export_running(state);
   ImGui::BeginDisabled(running);
-  ImGui::PushItemWidth(-130);
+  ImGui::PushItemWidth(-ui_units(130));
   int size[2] = {s.width, s.height};
   if (ImGui::InputInt2("Size (pixels)", size)) {
     s.width = std::clamp(size[0], 1, 16384);
@@ -122,13 +123,13 @@ void draw_export_dialog(Document& doc, EditorState& state) {
                   static_cast<long long>(job.samples()), job.elapsed_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
     ImGui::TextUnformatted(export_eta(job.progress(), job.elapsed_seconds()).c_str());
-    if (ImGui::Button("Cancel", ImVec2(120, 0))) {
+    if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";
     }
   } else {
     ImGui::BeginDisabled(!problem.empty());
-    if (ImGui::Button("Render", ImVec2(120, 0))) {
+    if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
       try {
         s.estimator = state.viewport.estimator;
         state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker, state.trace_backend);

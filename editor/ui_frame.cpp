@@ -1,16 +1,13 @@
-// One frame of the editor's UI: fixed panels around the viewport (no docking), the status bar.
+// One frame of the editor's UI: the menu bar, the status bar, and the panels in the dock space
+// (editor/ui_layout.h).
 #include <cstdio>
 
+#include <imgui_internal.h>  // BeginViewportSideBar: a bar that shrinks the dock space's area
+
 #include "editor/ui.h"
+#include "editor/ui_layout.h"
 
 namespace glint {
-namespace {
-
-constexpr ImGuiWindowFlags kPanelFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                                         ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
-                                         ImGuiWindowFlags_NoBringToFrontOnFocus;
-
-}  // namespace
 
 std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
   const FrameStats& s = state.viewport.frame.stats;
@@ -59,31 +56,21 @@ void draw_editor_ui(Document& doc, EditorState& state) {
   handle_shortcuts(doc, state);
   draw_main_menu(doc, state);
 
-  // Layout: menu bar on top, status bar below, outliner left, properties right, viewport between.
-  const float W = io.DisplaySize.x, H = io.DisplaySize.y;
-  const float menu_h = ImGui::GetFrameHeight();
-  const float status_h = ImGui::GetFrameHeight() + 4;
-  float left = std::min(state.left_width, W * 0.3f), right = std::min(state.right_width, W * 0.35f);
-  const float body_h = std::max(1.0f, H - menu_h - status_h);
-  state.viewport.pos = ImVec2(left, menu_h);
-  state.viewport.size = ImVec2(std::max(1.0f, W - left - right), body_h);
-
-  ImGui::SetNextWindowPos(ImVec2(0, menu_h));
-  ImGui::SetNextWindowSize(ImVec2(left, body_h));
-  if (ImGui::Begin("Outliner", nullptr, kPanelFlags)) draw_outliner(doc, state);
-  ImGui::End();
-
-  ImGui::SetNextWindowPos(ImVec2(W - right, menu_h));
-  ImGui::SetNextWindowSize(ImVec2(right, body_h));
-  if (ImGui::Begin("Properties", nullptr, kPanelFlags)) draw_properties(doc, state);
-  ImGui::End();
-
-  ImGui::SetNextWindowPos(ImVec2(0, H - status_h));
-  ImGui::SetNextWindowSize(ImVec2(W, status_h));
-  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8, 3));
-  if (ImGui::Begin("Status", nullptr, kPanelFlags | ImGuiWindowFlags_NoDecoration)) draw_status_bar(doc, state);
+  // The status bar takes the bottom of the work area; the dock space fills the rest.
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(8 * state.content_scale, 3 * state.content_scale));
+  if (ImGui::BeginViewportSideBar("##status", ImGui::GetMainViewport(), ImGuiDir_Down,
+                                  ImGui::GetFrameHeight(), ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings))
+    draw_status_bar(doc, state);
   ImGui::End();
   ImGui::PopStyleVar();
+  dock_panels(state.content_scale);
+
+  if (ImGui::Begin(kOutlinerWindow)) draw_outliner(doc, state);
+  ImGui::End();
+  if (ImGui::Begin(kPropertiesWindow)) draw_properties(doc, state);
+  ImGui::End();
+  if (ImGui::Begin(kStatsWindow)) draw_render_stats(doc, state);
+  ImGui::End();
 
   draw_viewport(doc, state);
   draw_export_dialog(doc, state);

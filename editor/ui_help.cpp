@@ -5,6 +5,7 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 namespace {
@@ -47,7 +48,7 @@ void settings_changed(EditorState& state) {
 
 void draw_help_windows(EditorState& state) {
   if (state.show_controls) {
-    ImGui::SetNextWindowSize(ImVec2(560, 0), ImGuiCond_Appearing);
+    ImGui::SetNextWindowSize(ImVec2(ui_units(560), 0), ImGuiCond_Appearing);
     if (ImGui::Begin("Controls", &state.show_controls, ImGuiWindowFlags_NoSavedSettings)) {
       if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         ImGui::TableSetupColumn("Input");

@@ -1,6 +1,6 @@
 // The main menu bar and the keyboard shortcuts.
-#define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
-#include <GLFW/glfw3.h>  // key codes only: the GLFW backend fills io.KeysDown by GLFW key
+// Keys are Dear ImGui's named keys: the GLFW backend queues each press and release as an
+// input event (io.AddKeyEvent), so a tap shorter than a slow frame is still seen.
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +9,12 @@
 #include "editor/material_fields.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_layout.h"
 
 namespace glint {
 namespace {
 
-bool key_pressed(int key) { return ImGui::IsKeyPressed(key, false); }
+bool key_pressed(ImGuiKey key) { return ImGui::IsKeyPressed(key, false); }
 
 // A sphere around the selection, for "frame selection".
 bool selection_bounds(const Scene& scene, Selection sel, glm::vec3& center, float& radius) {
@@ -56,33 +57,33 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   if (io.WantTextInput || ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel))
     return;
   if (io.KeyCtrl) {
-    if (key_pressed(GLFW_KEY_Z)) {
+    if (key_pressed(ImGuiKey_Z)) {
       if (io.KeyShift) { if (doc.can_redo()) doc.redo(); }
       else if (doc.can_undo()) doc.undo();
     }
-    if (key_pressed(GLFW_KEY_Y) && doc.can_redo()) doc.redo();
-    if (key_pressed(GLFW_KEY_S)) save_document(doc, state, io.KeyShift);
-    if (key_pressed(GLFW_KEY_O)) request_action(doc, state, DocAction::open_dialog);
-    if (key_pressed(GLFW_KEY_N)) request_action(doc, state, DocAction::new_document);
-    if (key_pressed(GLFW_KEY_Q)) request_action(doc, state, DocAction::quit);
+    if (key_pressed(ImGuiKey_Y) && doc.can_redo()) doc.redo();
+    if (key_pressed(ImGuiKey_S)) save_document(doc, state, io.KeyShift);
+    if (key_pressed(ImGuiKey_O)) request_action(doc, state, DocAction::open_dialog);
+    if (key_pressed(ImGuiKey_N)) request_action(doc, state, DocAction::new_document);
+    if (key_pressed(ImGuiKey_Q)) request_action(doc, state, DocAction::quit);
     return;
   }
-  if (key_pressed(ImGui::GetKeyIndex(ImGuiKey_Delete))) delete_item(doc, state, doc.selection);
-  if (key_pressed(GLFW_KEY_F)) frame_selection(doc);
+  if (key_pressed(ImGuiKey_Delete)) delete_item(doc, state, doc.selection);
+  if (key_pressed(ImGuiKey_F)) frame_selection(doc);
   for (int n = 1; n <= 4; ++n)
-    if (key_pressed(GLFW_KEY_1 + n - 1)) {
+    if (key_pressed(ImGuiKey(ImGuiKey_1 + n - 1))) {
       auto file = example_project(state, n);
       if (file.empty()) show_error(state, "The example projects folder was not found.");
       else request_action(doc, state, DocAction::open_path, file);
     }
   // WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
   glm::vec3 move{0};
-  if (ImGui::IsKeyDown(GLFW_KEY_W)) move.z += 1;
-  if (ImGui::IsKeyDown(GLFW_KEY_S)) move.z -= 1;
-  if (ImGui::IsKeyDown(GLFW_KEY_D)) move.x += 1;
-  if (ImGui::IsKeyDown(GLFW_KEY_A)) move.x -= 1;
-  if (ImGui::IsKeyDown(GLFW_KEY_E)) move.y += 1;
-  if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.y -= 1;
+  if (ImGui::IsKeyDown(ImGuiKey_W)) move.z += 1;
+  if (ImGui::IsKeyDown(ImGuiKey_S)) move.z -= 1;
+  if (ImGui::IsKeyDown(ImGuiKey_D)) move.x += 1;
+  if (ImGui::IsKeyDown(ImGuiKey_A)) move.x -= 1;
+  if (ImGui::IsKeyDown(ImGuiKey_E)) move.y += 1;
+  if (ImGui::IsKeyDown(ImGuiKey_Q)) move.y -= 1;
   if (move != glm::vec3(0)) {
     Camera& cam = doc.scene.camera;
     float speed = std::max(0.5f, glm::length(cam.target - cam.position)) * 0.8f;
@@ -149,6 +150,10 @@ void draw_main_menu(Document& doc, EditorState& state) {
     ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.tools.focus_tool);
     if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
     if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Window")) {
+    if (ImGui::MenuItem("Reset layout")) reset_layout();
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {

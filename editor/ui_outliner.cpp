@@ -3,6 +3,7 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 namespace {
@@ -19,7 +20,7 @@ void row(Document& doc, EditorState& state, Selection item, const std::string& n
       if (!rename(doc.scene, item, state.renaming.buffer))
         show_message(state, std::string("The name '") + state.renaming.buffer + "' is empty or taken");
       state.renaming.item = {};
-    } else if (ImGui::IsItemDeactivated() || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+    } else if (ImGui::IsItemDeactivated() || ImGui::IsKeyPressed(ImGuiKey_Escape)) {
       state.renaming.item = {};
     }
   } else {
@@ -87,7 +88,7 @@ void draw_outliner(Document& doc, EditorState& state) {
     for (int i = 0; i < int(s.textures.size()); ++i) {
       unsigned thumb = state.thumbnails.get(resolve_asset_path(s, s.textures[i].path), 64);
       if (thumb) {
-        ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(thumb)), ImVec2(18, 18));
+        ImGui::Image(static_cast<ImTextureID>(thumb), ImVec2(ui_units(18), ui_units(18)));
         ImGui::SameLine();
       }
       row(doc, state, {SelectionKind::texture, i}, s.textures[i].name);

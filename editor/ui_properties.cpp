@@ -5,6 +5,7 @@
 #include "editor/material_fields.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 #include "renderer/scene_fields.h"
 
 namespace glint {
@@ -33,7 +34,7 @@ void tip(const char* text) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
-ImTextureID tex_id(unsigned t) { return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(t)); }
+ImTextureID tex_id(unsigned t) { return static_cast<ImTextureID>(t); }
 
 void name_field(Document& doc, EditorState& state, Selection sel) {
   char buf[256];
@@ -80,11 +81,11 @@ void texture_slot(Document& doc, EditorState& state, int material, int slot, con
   ImGui::PushID(slot);
   int t = find_texture(doc.scene, value);
   unsigned thumb = t >= 0 ? state.thumbnails.get(resolve_asset_path(doc.scene, doc.scene.textures[t].path), 64) : 0;
-  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(32, 32));
-  else ImGui::Dummy(ImVec2(32, 32));
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(ui_units(32), ui_units(32)));
+  else ImGui::Dummy(ImVec2(ui_units(32), ui_units(32)));
   ImGui::SameLine();
   ImGui::BeginGroup();
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - 110);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ui_units(110));
   name_combo(label, value, doc.scene.textures, true);
   tip(slot == 0 ? "An image that replaces the colour (its alpha is coverage)."
       : slot == 1 ? "An image that multiplies the emission."
@@ -207,7 +208,7 @@ void texture_properties(Document& doc, EditorState& state, int i) {
   name_field(doc, state, doc.selection);
   ImGui::TextWrapped("File: %s", t.path.c_str());
   unsigned thumb = state.thumbnails.get(resolve_asset_path(doc.scene, t.path), 160);
-  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(160, 160));
+  if (thumb) ImGui::Image(tex_id(thumb), ImVec2(ui_units(160), ui_units(160)));
   else ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "cannot read the image");
 }
 
@@ -296,7 +297,7 @@ void camera_properties(Document& doc) {
 void draw_properties(Document& doc, EditorState& state) {
   Selection sel = doc.selection;
   Scene& s = doc.scene;
-  ImGui::PushItemWidth(-110);
+  ImGui::PushItemWidth(-ui_units(110));
   auto valid = [](int i, size_t n) { return i >= 0 && i < static_cast<int>(n); };
   if (sel.kind == SelectionKind::sphere && valid(sel.index, s.spheres.size())) {
     section_title("Sphere");

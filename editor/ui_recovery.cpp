@@ -1,6 +1,7 @@
 // The offer of the unsaved work a crashed run left (state.recovery, see recent_and_recovery.h): a modal
 // with Recover (the work becomes the open document, unsaved) and Discard (the file goes).
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 namespace {
@@ -23,7 +24,7 @@ void draw_recovery_offer(Document& doc, EditorState& state) {
   ImGui::Text("Unsaved changes of %s can be recovered.", name.c_str());
   ImGui::Spacing();
   const std::filesystem::path dir = r.file.parent_path();  // r goes with the answer
-  if (ImGui::Button("Recover", ImVec2(110, 0))) {
+  if (ImGui::Button("Recover", ImVec2(ui_units(110), 0))) {
     doc = open_recovery(r);
     state.thumbnails.clear();
     show_message(state, "Recovered the unsaved changes of " + name);
@@ -32,7 +33,7 @@ void draw_recovery_offer(Document& doc, EditorState& state) {
     discard_recovery(dir);  // this run's autosave writes the recovered work again
   }
   ImGui::SameLine();
-  if (ImGui::Button("Discard", ImVec2(110, 0))) {
+  if (ImGui::Button("Discard", ImVec2(ui_units(110), 0))) {
     ImGui::CloseCurrentPopup();
     state.recovery.reset();
     discard_recovery(dir);

@@ -2,11 +2,14 @@
 // mouse navigation (orbit, pan, zoom), and the rendered image under them.
 #include <cmath>
 
+
 #include "editor/camera_control.h"
 #include "editor/film_frame.h"
 #include "editor/picking.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
+#include "editor/ui_layout.h"
 
 namespace glint {
 namespace {
@@ -57,13 +60,13 @@ void draw_gizmo(const Gizmo& g, int hover, int active) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   for (int a = 0; a < 3; ++a) {
     if (!g.end_visible[a]) continue;
-    float thick = (a == hover || a == active) ? 5.0f : 3.0f;
+    const float thick = ui_units((a == hover || a == active) ? 5.0f : 3.0f);
     ImU32 col = (a == active) ? IM_COL32(255, 230, 80, 255) : kAxisColors[a];
     dl->AddLine(g.origin, g.ends[a], IM_COL32(0, 0, 0, 160), thick + 2);
     dl->AddLine(g.origin, g.ends[a], col, thick);
-    dl->AddCircleFilled(g.ends[a], thick + 3, col);
+    dl->AddCircleFilled(g.ends[a], thick + ui_units(3), col);
   }
-  dl->AddCircleFilled(g.origin, 4, IM_COL32(255, 255, 255, 220));
+  dl->AddCircleFilled(g.origin, ui_units(4), IM_COL32(255, 255, 255, 220));
 }
 
 }  // namespace
@@ -140,19 +143,25 @@ void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focu
 
 void draw_viewport(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  ImGui::SetNextWindowPos(state.viewport.pos);
-  ImGui::SetNextWindowSize(state.viewport.size);
+  // A dockable window without a background (the image goes under it, show_viewport_image);
+  // its input and overlays live in a child window that covers it, drawn above that image.
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0, 0));
-  ImGui::PushStyleVar(ImGuiStyleVar_WindowBorderSize, 0);
-  ImGui::Begin("Viewport", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse |
-                   ImGuiWindowFlags_NoBackground);
-  ImGui::PopStyleVar(2);
+  const bool open = ImGui::Begin(kViewportWindow, nullptr,
+                                 ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoCollapse);
+  ImGui::PopStyleVar();
+  if (!open) {
+    ImGui::End();
+    return;
+  }
   ImVec2 origin = ImGui::GetCursorScreenPos();
   ImVec2 size = ImGui::GetContentRegionAvail();
   size.x = std::max(size.x, 1.0f);
   size.y = std::max(size.y, 1.0f);
+  state.viewport.pos = origin;
+  state.viewport.size = size;
+  ImGui::BeginChild("##viewport overlay", size, ImGuiChildFlags_None,
+                    ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
 
   // One item over the whole image: ImGui then knows a drag here is in progress.
   ImGui::InvisibleButton("##viewport", size,
@@ -165,7 +174,7 @@ void draw_viewport(Document& doc, EditorState& state) {
   const bool focusing = state.tools.focus_tool || io.KeyCtrl;
   if (gizmo.visible && hovered && !focusing && state.tools.gizmo_axis < 0 && state.tools.camera_button < 0)
     for (int a = 0; a < 3; ++a)
-      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < 7) state.tools.gizmo_hover = a;
+      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < ui_units(7)) state.tools.gizmo_hover = a;
 
   // Presses start a gizmo drag or a camera gesture.
   if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.tools.gizmo_hover >= 0) {
@@ -239,7 +248,9 @@ void draw_viewport(Document& doc, EditorState& state) {
   gizmo = make_gizmo(doc, origin, size);  // where the object is now
   if (gizmo.visible) draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
   if (state.tools.focus_tool)
-    dl->AddText(ImVec2(origin.x + 10, end.y - 24), IM_COL32(255, 230, 120, 255), "Focus tool: click a surface");
+    dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255),
+                "Focus tool: click a surface");
+  ImGui::EndChild();
   ImGui::End();
 }
 
@@ -260,38 +271,43 @@ ViewportRequest viewport_request(const EditorState& state) {
 }
 
 void show_viewport_image(const ViewportView& view) {
-  // ImGui's background list is drawn before every window; the viewport window has no
-  // background of its own, so its gizmo and texts lie on top of the image. The image is the
-  // one rendered this frame for view.size, so a resize never shows a stale or stretched frame.
-  ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const ImVec2 origin = view.pos;
-  const ImVec2 end(origin.x + view.size.x, origin.y + view.size.y);
-  if (view.frame.display_texture)
-    dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(view.frame.display_texture)), origin, end);
-  else
-    dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
-  // The film frame: what Export writes is inside; the margins are dimmed.
-  const FilmRect f = film_rect({view.size.x, view.size.y}, view.film);
-  const ImVec2 f0(origin.x + f.offset.x, origin.y + f.offset.y);
-  const ImVec2 f1(f0.x + f.size.x, f0.y + f.size.y);
-  const ImU32 dim = IM_COL32(0, 0, 0, 150);
-  if (f0.y - origin.y > 0.5f) {
-    dl->AddRectFilled(origin, ImVec2(end.x, f0.y), dim);
-    dl->AddRectFilled(ImVec2(origin.x, f1.y), end, dim);
+  // Appends to the viewport window (its Begin a second time this frame): the window's own draw
+  // list is drawn before its overlay child, so the gizmo and texts lie on top of the image. The
+  // image is the one rendered this frame for view.size, so a resize never shows a stale or
+  // stretched frame. A hidden viewport (another tab in front) draws nothing.
+  const bool open = ImGui::Begin(kViewportWindow);
+  if (open) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 origin = view.pos;
+    const ImVec2 end(origin.x + view.size.x, origin.y + view.size.y);
+    if (view.frame.display_texture)
+      dl->AddImage(static_cast<ImTextureID>(view.frame.display_texture), origin, end);
+    else
+      dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+    // The film frame: what Export writes is inside; the margins are dimmed.
+    const FilmRect f = film_rect({view.size.x, view.size.y}, view.film);
+    const ImVec2 f0(origin.x + f.offset.x, origin.y + f.offset.y);
+    const ImVec2 f1(f0.x + f.size.x, f0.y + f.size.y);
+    const ImU32 dim = IM_COL32(0, 0, 0, 150);
+    if (f0.y - origin.y > 0.5f) {
+      dl->AddRectFilled(origin, ImVec2(end.x, f0.y), dim);
+      dl->AddRectFilled(ImVec2(origin.x, f1.y), end, dim);
+    }
+    if (f0.x - origin.x > 0.5f) {
+      dl->AddRectFilled(origin, ImVec2(f0.x, end.y), dim);
+      dl->AddRectFilled(ImVec2(f1.x, origin.y), end, dim);
+    }
+    dl->AddRect(f0, f1, IM_COL32(255, 255, 255, 90));
+    // The selection's outline (Blender's orange), over the image.
+    if (view.outline.size() >= 2) {
+      dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(0, 0, 0, 140), ImDrawFlags_Closed, 3.5f);
+      dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(255, 160, 40, 255), ImDrawFlags_Closed, 1.5f);
+    }
+    if (!view.frame.stats.scene_problem.empty())
+      dl->AddText(ImVec2(origin.x + 10, origin.y + 10 + ImGui::GetFrameHeightWithSpacing()), IM_COL32(255, 120, 90, 255),
+                  ("Not rendering: " + view.frame.stats.scene_problem).c_str());
   }
-  if (f0.x - origin.x > 0.5f) {
-    dl->AddRectFilled(origin, ImVec2(f0.x, end.y), dim);
-    dl->AddRectFilled(ImVec2(f1.x, origin.y), end, dim);
-  }
-  dl->AddRect(f0, f1, IM_COL32(255, 255, 255, 90));
-  // The selection's outline (Blender's orange), over the image.
-  if (view.outline.size() >= 2) {
-    dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(0, 0, 0, 140), ImDrawFlags_Closed, 3.5f);
-    dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(255, 160, 40, 255), ImDrawFlags_Closed, 1.5f);
-  }
-  if (!view.frame.stats.scene_problem.empty())
-    dl->AddText(ImVec2(origin.x + 10, origin.y + 10), IM_COL32(255, 120, 90, 255),
-                ("Not rendering: " + view.frame.stats.scene_problem).c_str());
+  ImGui::End();
 }
 
 }  // namespace glint

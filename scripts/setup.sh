@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake ninja-build pkg-config g++ python3
-  libglfw3-dev libimgui-dev libglm-dev libstb-dev libepoxy-dev
+  libglfw3-dev libglm-dev libstb-dev libepoxy-dev
   nlohmann-json3-dev libtinyexr-dev libgtest-dev
   libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libegl1
   xvfb xauth
@@ -27,7 +27,8 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-# cargo fetches the pinned tinyfiledialogs crate at configure time (cmake/TinyFileDialogs.cmake).
+# cargo fetches the pinned tinyfiledialogs and Dear ImGui crates at configure time
+# (cmake/TinyFileDialogs.cmake, cmake/DearImGui.cmake).
 if ! command -v cargo >/dev/null 2>&1 && [ ! -x "$HOME/.cargo/bin/cargo" ]; then
   echo "setup: cargo not found; installing Debian's cargo" >&2
   sudo_cmd=()

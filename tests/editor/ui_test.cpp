@@ -10,7 +10,7 @@
 #include <epoxy/gl.h>
 // epoxy must come before GLFW.
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
-#include <GLFW/glfw3.h>  // key codes (the GLFW backend indexes io.KeysDown by them)
+#include <GLFW/glfw3.h>  // key codes (translated as the GLFW backend translates them)
 
 #include <imgui_internal.h>  // FindWindowByName: where a popup's buttons are
 
@@ -23,6 +23,7 @@
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
 #include "editor_test_util.h"
+#include "ui_test_context.h"
 #include "renderer/gl_context.h"
 #include "renderer/project_file.h"
 #include "tests/image_fixtures.h"
@@ -43,27 +44,17 @@ class UiTest : public ::testing::Test {
     state_.flow.projects_dir = kProjects;
     open_document(doc_, state_, kProjects / "default.glint");
     frame();
+    frame();  // the default dock layout is in place from the second frame
   }
   void TearDown() override {
     state_.thumbnails.clear();
     viewport_.reset();
-    ImGui::DestroyContext();
+    destroy_ui_context();
   }
 
   // A fresh ImGui context, as at the editor's start: no window exists before its first frame.
   void start_imgui() {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(800, 500);
-    io.DeltaTime = 1.0f / 60;
-    unsigned char* pixels;
-    int w, h;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    io.Fonts->SetTexID(reinterpret_cast<ImTextureID>(intptr_t(1)));
-    io.KeyMap[ImGuiKey_Delete] = GLFW_KEY_DELETE;
-    io.KeyMap[ImGuiKey_Escape] = GLFW_KEY_ESCAPE;
-    io.KeyMap[ImGuiKey_Enter] = GLFW_KEY_ENTER;
+    test::start_test_ui(1, ImVec2(800, 500));
   }
 
   // One UI frame, as the app runs it.
@@ -75,17 +66,20 @@ class UiTest : public ::testing::Test {
     error_open_ = ImGui::IsPopupOpen("Error");
     recovery_offer_open_ = ImGui::IsPopupOpen("Recover unsaved work?");
     editor_frame(doc_, state_, *viewport_);
+    test::settle_test_textures();
   }
+  // A GLFW key pressed in one frame and released in the next (queued as the backend does).
   void press(int key, bool ctrl = false, bool shift = false) {
     ImGuiIO& io = ImGui::GetIO();
-    io.KeyCtrl = ctrl;
-    io.KeyShift = shift;
-    io.KeysDown[key] = true;
+    test::set_modifiers(ctrl, shift);
+    io.AddKeyEvent(test::glfw_key(key), true);
     frame();
-    io.KeysDown[key] = false;
-    io.KeyCtrl = io.KeyShift = false;
+    io.AddKeyEvent(test::glfw_key(key), false);
+    test::set_modifiers(false, false);
     frame();
   }
+  void mouse_to(ImVec2 at) { ImGui::GetIO().AddMousePosEvent(at.x, at.y); }
+  void mouse_button(bool down) { ImGui::GetIO().AddMouseButtonEvent(0, down); }
   // Screen position of a world point in the viewport.
   ImVec2 screen(glm::vec3 p) {
     glm::vec2 v;
@@ -93,15 +87,14 @@ class UiTest : public ::testing::Test {
     return ImVec2(state_.viewport.pos.x + v.x, state_.viewport.pos.y + v.y);
   }
   void click(ImVec2 at, bool ctrl = false) {
-    ImGuiIO& io = ImGui::GetIO();
-    io.MousePos = at;
+    mouse_to(at);
     frame();
-    io.KeyCtrl = ctrl;
-    io.MouseDown[0] = true;
+    test::set_modifiers(ctrl, false);
+    mouse_button(true);
     frame();
-    io.MouseDown[0] = false;
+    mouse_button(false);
     frame();
-    io.KeyCtrl = false;
+    test::set_modifiers(false, false);
   }
   // Centre of button `n` (each `width` wide) in the last row of the auto-sized popup `name`.
   ImVec2 popup_button(const char* name, int n, float width) {
@@ -171,7 +164,11 @@ TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
     ImGui::GetIO().DisplaySize = display;
     frame();
     const ViewportView& v = state_.viewport;
-    EXPECT_NEAR(v.pos.x + v.size.x + std::min(state_.right_width, display.x * 0.35f), display.x, 0.5f);
+    // The dock space follows the window: the properties panel stays at its right edge.
+    const ImGuiWindow* properties = ImGui::FindWindowByName("Properties");
+    ASSERT_NE(properties, nullptr);
+    EXPECT_NEAR(properties->Pos.x + properties->Size.x, display.x, 0.5f);
+    EXPECT_LE(v.pos.x + v.size.x, properties->Pos.x + 0.5f);
     const unsigned tex = v.frame.display_texture;
     ASSERT_NE(tex, 0u);
     // The texture shown is the one traced at this frame's size (quarter resolution here).
@@ -187,7 +184,7 @@ TEST_F(UiTest, ResizeShowsTheImageRenderedForThisFramesSize) {
     for (int l = 0; l < data->CmdListsCount; ++l) {
       const ImDrawList* list = data->CmdLists[l];
       for (const ImDrawCmd& cmd : list->CmdBuffer) {
-        if (cmd.TextureId != reinterpret_cast<ImTextureID>(static_cast<intptr_t>(tex))) continue;
+        if (cmd.GetTexID() != static_cast<ImTextureID>(tex)) continue;
         ++images;
         ImVec2 lo(1e9f, 1e9f), hi(-1e9f, -1e9f);
         for (unsigned i = 0; i < cmd.ElemCount; ++i) {
@@ -267,18 +264,17 @@ TEST_F(UiTest, GizmoDragMovesAlongOneAxisAsOneUndoStep) {
   float len = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
   ImVec2 a = screen(c0), b = screen(c0 + glm::vec3(len, 0, 0));
   ImVec2 mid((a.x + b.x) / 2, (a.y + b.y) / 2);
-  ImGuiIO& io = ImGui::GetIO();
-  io.MousePos = mid;
+  mouse_to(mid);
   frame();
   EXPECT_EQ(state_.tools.gizmo_hover, 0);
-  io.MouseDown[0] = true;
+  mouse_button(true);
   frame();
   for (int i = 1; i <= 5; ++i) {  // drag along the handle's screen direction, one full length
-    io.MousePos = ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5);
+    mouse_to(ImVec2(mid.x + (b.x - a.x) * i / 5, mid.y + (b.y - a.y) * i / 5));
     frame();
     EXPECT_TRUE(state_.tools.interacting);
   }
-  io.MouseDown[0] = false;
+  mouse_button(false);
   frame();
   const glm::vec3 c1 = doc_.scene.spheres[ball].center;
   EXPECT_NEAR(c1.x - c0.x, len, len * 0.05f);
@@ -502,9 +498,9 @@ TEST_F(UiTest, EnterOnAFailedTypedPathShowsTheError) {
   for (int i = 0; i < 3; ++i) frame();  // the prompt opens and its field takes the keyboard
   ASSERT_TRUE(path_prompt_open_);
   ImGuiIO& io = ImGui::GetIO();
-  io.KeysDown[GLFW_KEY_ENTER] = true;
+  io.AddKeyEvent(ImGuiKey_Enter, true);
   for (int i = 0; i < 40; ++i) frame();  // held past the key repeat delay
-  io.KeysDown[GLFW_KEY_ENTER] = false;
+  io.AddKeyEvent(ImGuiKey_Enter, false);
   frame();
   frame();
   EXPECT_FALSE(path_prompt_open_);
@@ -581,11 +577,11 @@ class UiUsabilityTest : public UiTest {
     ImGuiWindow* w = ImGui::FindWindowByName(window);
     if (!w) return ImVec2(-1, -1);
     const ImGuiID id = w->GetID(label);
-    ImGuiIO& io = ImGui::GetIO();
     for (float y = w->Pos.y + 4; y < w->Pos.y + w->Size.y; y += 6) {
-      io.MousePos = ImVec2(w->Pos.x + x_offset, y);
+      const ImVec2 at(w->Pos.x + x_offset, y);
+      mouse_to(at);
       frame();
-      if (ImGui::GetCurrentContext()->HoveredId == id) return io.MousePos;
+      if (ImGui::GetCurrentContext()->HoveredId == id) return at;
     }
     return ImVec2(-1, -1);
   }
@@ -614,13 +610,13 @@ TEST_F(UiUsabilityTest, AutoPreviewKeepsAccumulatingWhileTheExposureIsDragged) {
   EXPECT_TRUE(window_active("##Tooltip_00")) << "no tooltip on the Exposure slider";
   ImGuiIO& io = ImGui::GetIO();
   const float exposure = doc_.scene.display.exposure;
-  io.MouseDown[0] = true;
+  mouse_button(true);
   frame();
   const int64_t before = stats().spp;
   const int width = stats().trace_width;
   int64_t last = before;
   for (int i = 0; i < 20; ++i) {
-    io.MousePos.x += 3;
+    mouse_to(ImVec2(io.MousePos.x + 3, io.MousePos.y));
     frame();
     EXPECT_FALSE(stats().restarted) << "frame " << i;
     EXPECT_GE(stats().spp, last) << "frame " << i;
@@ -632,7 +628,7 @@ TEST_F(UiUsabilityTest, AutoPreviewKeepsAccumulatingWhileTheExposureIsDragged) {
   // it pauses (keeping every sample) until the mouse is released.
   const bool paused = viewport_->preview().divisor() < viewport_->budget().divisor();
   EXPECT_TRUE(last > before || paused) << before << " -> " << last;
-  io.MouseDown[0] = false;
+  mouse_button(false);
   for (int i = 0; i < 3; ++i) frame();
   EXPECT_GT(stats().spp, before);
 }
@@ -642,7 +638,7 @@ TEST_F(UiUsabilityTest, AutoPreviewRefinesToFullResolutionWhenIdle) {
   set_budget(0, 1, 1);
   ImGui::GetIO().DisplaySize = ImVec2(640, 400);
   state_.viewport.resolution = ViewportResolution::automatic;
-  ImGui::GetIO().MousePos = ImVec2(-1, -1);  // no input at all
+  mouse_to(ImVec2(-1, -1));  // no input at all
   frame();
   EXPECT_GT(stats().divisor, 1);  // it starts coarse
   for (int i = 0; i < 40 && stats().divisor > 1; ++i) frame();
@@ -662,12 +658,12 @@ TEST_F(UiUsabilityTest, AutoPreviewClicksThatEditNothingDoNotRestart) {
   ASSERT_GE(ball, 0);
   ImGuiIO& io = ImGui::GetIO();
   const ImVec2 targets[] = {screen(doc_.scene.spheres[ball].center),  // selects
-                            ImVec2(state_.viewport.pos.x + 3, state_.viewport.pos.y + 3)};
+                            ImVec2(state_.viewport.pos.x + 15, state_.viewport.pos.y + 15)};  // clear of the dock splitters
   int64_t last = stats().spp;
   for (ImVec2 target : targets)
     for (int step = 0; step < 3; ++step) {
-      io.MousePos = target;
-      io.MouseDown[0] = step == 1;
+      mouse_to(target);
+      mouse_button(step == 1);
       frame();
       EXPECT_FALSE(stats().restarted) << "step " << step;
       EXPECT_GE(stats().spp, last);

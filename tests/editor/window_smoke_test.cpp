@@ -11,9 +11,9 @@
 namespace glint {
 namespace {
 
-// Dear ImGui's dark style (StyleColorsDark): the panel background (0.06, alpha 0.94) over the
-// editor's clear colour (0.1, 0.1, 0.11), and the opaque menu bar (0.14).
-constexpr float kPanel = 0.06f * 0.94f + 0.10f * 0.06f;
+// Dear ImGui's dark style (StyleColorsDark, 1.93): the opaque panel background (0.18) and the
+// opaque menu bar (0.14).
+constexpr float kPanel = 0.18f;
 constexpr float kMenuBar = 0.14f;
 constexpr float kTolerance = 3.0f / 255;  // 8-bit rounding and blending
 

@@ -1,0 +1,35 @@
+#include "editor/render_stats_history.h"
+
+namespace glint {
+
+void TimeSeries::add(double t_s, double v) {
+  t.push_back(t_s);
+  value.push_back(v);
+  if (t.size() > max_points) {
+    const size_t drop = t.size() - max_points;
+    t.erase(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(drop));
+    value.erase(value.begin(), value.begin() + static_cast<std::ptrdiff_t>(drop));
+  }
+}
+
+void TimeSeries::clear() {
+  t.clear();
+  value.clear();
+}
+
+void RenderStatsHistory::record(const FrameStats& stats, double now_s) {
+  if (start_s < 0 || stats.restarted || stats.spp < last_spp) {
+    start_s = now_s;
+    samples_per_second.clear();
+    estimated_error.clear();
+  }
+  last_spp = stats.spp;
+  if (stats.spp > 0) samples_per_second.add(now_s - start_s, stats.spp_per_second);
+}
+
+void RenderStatsHistory::add_error(double now_s, double error) {
+  if (start_s < 0) start_s = now_s;
+  estimated_error.add(now_s - start_s, error);
+}
+
+}  // namespace glint

@@ -1,0 +1,43 @@
+// What the Render statistics panel plots: figures of the viewport's accumulation against the
+// time since it last restarted. No UI types: the panel (ui_stats.cpp) draws these series with
+// ImPlot, and any producer (the frame statistics today, a per-pixel error estimate later) adds
+// points to a series of its own.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "editor/viewport_frame.h"
+
+namespace glint {
+
+// One curve: x is seconds since the accumulation started, y the value. Keeps the newest
+// `max_points` points (the oldest go first).
+struct TimeSeries {
+  std::string label;
+  std::vector<double> t, value;
+  size_t max_points = 2000;
+
+  void add(double t_s, double v);
+  void clear();
+  bool empty() const { return t.empty(); }
+};
+
+// The panel's series. record() is called once per frame with that frame's statistics.
+struct RenderStatsHistory {
+  TimeSeries samples_per_second{"samples per pixel per second"};
+  // The estimated relative error of the image against time; empty until an estimator feeds it
+  // with add_error().
+  TimeSeries estimated_error{"estimated error"};
+
+  // Frame time `now_s` (any clock); a restart of the accumulation (or the first call) starts
+  // every series again at t = 0.
+  void record(const FrameStats& stats, double now_s);
+  // A point of the error series at `now_s` on the same clock as record().
+  void add_error(double now_s, double error);
+  double start_s = -1;  // clock time of the accumulation's start; < 0 before the first record
+  long long last_spp = 0;
+};
+
+}  // namespace glint

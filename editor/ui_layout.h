@@ -1,0 +1,42 @@
+// The editor's window layout: a dock space over the main window, below the menu bar and above
+// the status bar, holding the panels. The first time (no saved layout) it is built with Dear
+// ImGui's DockBuilder: outliner left, properties right, render statistics below the viewport,
+// the viewport in the centre, side widths in ImGui units times the content scale. The user can
+// then drag, resize, tab and float the panels; the layout is saved in the user's config folder
+// (never the working directory), atomically, and restored at the next start.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <imgui.h>
+
+namespace glint {
+
+// The panels' window names (dock targets, and the keys in the saved layout).
+inline constexpr const char* kOutlinerWindow = "Outliner";
+inline constexpr const char* kPropertiesWindow = "Properties";
+inline constexpr const char* kViewportWindow = "Viewport";
+inline constexpr const char* kStatsWindow = "Render statistics";
+
+// Default sizes in ImGui units at content scale 1.
+inline constexpr float kOutlinerWidth = 270, kPropertiesWidth = 340, kStatsHeight = 170;
+
+// config_dir()/layout.ini; `dir` overrides config_dir() (tests).
+std::filesystem::path layout_file_path(const std::filesystem::path& dir = {});
+
+// The dock space for this frame, over the main viewport's work area (call after the menu and
+// status bars, before the panels' Begin). Builds the default layout when none was loaded.
+// Returns the dock space's id.
+ImGuiID dock_panels(float content_scale);
+// Throws away the current layout; the next dock_panels() builds the default one.
+void reset_layout();
+
+// Loads a saved layout into the current context (call before the first frame). A missing file
+// is no error; an unreadable one is reported in `error` and the default layout is used.
+void load_layout(const std::filesystem::path& file, std::string& error);
+// Writes the layout when ImGui asks (io.WantSaveIniSettings) or when `force`; best effort: an
+// error (a read-only home) goes to `error` and never stops the editor. Returns true when written.
+bool save_layout_if_needed(const std::filesystem::path& file, bool force, std::string& error);
+
+}  // namespace glint

@@ -1,0 +1,38 @@
+// The Render statistics panel: the viewport's samples per pixel per second against the time
+// since its accumulation started and, once an estimator feeds it, the estimated error; drawn
+// with ImPlot.
+#include <algorithm>
+
+#include <implot.h>
+
+#include "editor/ui.h"
+
+namespace glint {
+
+void plot_time_series(const char* plot_id, const TimeSeries& series, bool log_y, float height) {
+  if (!ImPlot::BeginPlot(plot_id, ImVec2(-1, height), ImPlotFlags_NoMenus | ImPlotFlags_NoBoxSelect)) return;
+  // The legend names the curve; the y axis stays unlabelled (a long name would be cut).
+  ImPlot::SetupAxes("seconds", nullptr, ImPlotAxisFlags_AutoFit, ImPlotAxisFlags_AutoFit);
+  if (log_y) ImPlot::SetupAxisScale(ImAxis_Y1, ImPlotScale_Log10);
+  if (!series.empty())
+    ImPlot::PlotLine(series.label.c_str(), series.t.data(), series.value.data(), static_cast<int>(series.t.size()));
+  ImPlot::EndPlot();
+}
+
+void draw_render_stats(Document&, EditorState& state) {
+  RenderStatsHistory& h = state.stats_history;
+  h.record(state.viewport.frame.stats, ImGui::GetTime());
+  const bool has_error = !h.estimated_error.empty();
+  const float height = std::max(ImGui::GetContentRegionAvail().y, 1.0f);
+  if (has_error && ImGui::BeginTable("##stats", 2, ImGuiTableFlags_SizingStretchSame)) {
+    ImGui::TableNextColumn();
+    plot_time_series("##spp", h.samples_per_second, false, height);
+    ImGui::TableNextColumn();
+    plot_time_series("##error", h.estimated_error, true, height);
+    ImGui::EndTable();
+  } else {
+    plot_time_series("##spp", h.samples_per_second, false, height);
+  }
+}
+
+}  // namespace glint
