@@ -25,6 +25,10 @@ void RenderStatsHistory::record(const FrameStats& stats, double now_s) {
   }
   last_spp = stats.spp;
   if (stats.spp > 0) samples_per_second.add(now_s - start_s, stats.spp_per_second);
+  // The viewport refreshes its estimate a few times a second: one point per new value.
+  if (stats.estimated_relmse > 0 &&
+      (estimated_error.empty() || estimated_error.value.back() != stats.estimated_relmse))
+    add_error(now_s, stats.estimated_relmse);
 }
 
 void RenderStatsHistory::add_error(double now_s, double error) {

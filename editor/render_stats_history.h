@@ -1,7 +1,7 @@
 // What the Render statistics panel plots: figures of the viewport's accumulation against the
 // time since it last restarted. No UI types: the panel (ui_stats.cpp) draws these series with
-// ImPlot, and any producer (the frame statistics today, a per-pixel error estimate later) adds
-// points to a series of its own.
+// ImPlot, and any producer (the frame statistics: samples per second and the viewport's
+// estimated relMSE) adds points to a series of its own.
 #pragma once
 
 #include <cstddef>
@@ -27,8 +27,8 @@ struct TimeSeries {
 // The panel's series. record() is called once per frame with that frame's statistics.
 struct RenderStatsHistory {
   TimeSeries samples_per_second{"samples per pixel per second"};
-  // The estimated relative error of the image against time; empty until an estimator feeds it
-  // with add_error().
+  // The viewport's estimated relMSE (FrameStats::estimated_relmse) against time, one point per
+  // new estimate; empty until the first estimate.
   TimeSeries estimated_error{"estimated error"};
 
   // Frame time `now_s` (any clock); a restart of the accumulation (or the first call) starts

@@ -25,10 +25,12 @@ void draw_render_stats(Document&, EditorState& state) {
   const bool has_error = !h.estimated_error.empty();
   const float height = std::max(ImGui::GetContentRegionAvail().y, 1.0f);
   if (has_error && ImGui::BeginTable("##stats", 2, ImGuiTableFlags_SizingStretchSame)) {
+    // A table cell is padded above and below: without that room the panel would scroll.
+    const float cell = std::max(height - 2 * ImGui::GetStyle().CellPadding.y - 1, 1.0f);
     ImGui::TableNextColumn();
-    plot_time_series("##spp", h.samples_per_second, false, height);
+    plot_time_series("##spp", h.samples_per_second, false, cell);
     ImGui::TableNextColumn();
-    plot_time_series("##error", h.estimated_error, true, height);
+    plot_time_series("##error", h.estimated_error, true, cell);
     ImGui::EndTable();
   } else {
     plot_time_series("##spp", h.samples_per_second, false, height);
