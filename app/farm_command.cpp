@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/command_line.h"
 #include "renderer/atomic_file.h"
 #include "renderer/render_part.h"
 
@@ -49,10 +50,6 @@ const char* const kUsage =
     "the merged image.\n"
     "Exit codes: 0 done, 1 sbatch failed or a file could not be read or written (status:\n"
     "parts are missing), 2 bad arguments.\n";
-
-struct UsageError {
-  std::string message;
-};
 
 // The render as farm.json records it.
 struct Plan {
@@ -389,18 +386,8 @@ int farm_slurm(Options o) {
 }  // namespace
 
 int run_farm_command(int argc, char** argv) {
-  for (int i = 0; i < argc; ++i)
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
   Options o;
-  try {
-    o = parse(argc, argv);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "glint farm: %s\n\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  if (int code = parse_command_line("glint farm", kUsage, argc, argv, parse, o); code >= 0) return code;
   try {
     return o.command == "status" ? farm_status(o) : farm_slurm(o);
   } catch (const std::exception& e) {

@@ -9,6 +9,7 @@
 #include <system_error>
 #include <vector>
 
+#include "app/command_line.h"
 #include "renderer/atomic_file.h"
 #include "renderer/image.h"
 #include "renderer/render_part.h"
@@ -41,10 +42,6 @@ struct Options {
   std::vector<std::string> parts;
   std::string output;
   int64_t total = 0;
-};
-
-struct UsageError {
-  std::string message;
 };
 
 Options parse(int argc, char** argv) {
@@ -84,18 +81,8 @@ Options parse(int argc, char** argv) {
 }  // namespace
 
 int run_merge_command(int argc, char** argv) {
-  for (int i = 0; i < argc; ++i)
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
   Options o;
-  try {
-    o = parse(argc, argv);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "glint merge: %s\n\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  if (int code = parse_command_line("glint merge", kUsage, argc, argv, parse, o); code >= 0) return code;
   try {
     if (const auto problem = file_write_problem(o.output)) throw std::runtime_error(o.output + ": " + *problem);
     std::vector<RenderPart> parts;

@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include "app/command_line.h"
 #include "app/progress_bar.h"
 #include "renderer/atomic_file.h"
 #include "renderer/backend_choice.h"
@@ -135,10 +136,6 @@ struct Options {
   WorkGroup work_group;
   RenderOutputOptions output_options;  // --denoise, --denoise-quality, --aovs
   bool denoise_quality_given = false;
-};
-
-struct UsageError {
-  std::string message;
 };
 
 long parse_integer(const std::string& option, const std::string& text, long lo, long hi) {
@@ -374,18 +371,8 @@ class LogFile {
 }  // namespace
 
 int run_render_command(int argc, char** argv) {
-  for (int i = 0; i < argc; ++i)
-    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
   Options o;
-  try {
-    o = parse(argc, argv);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "glint render: %s\n\n%s", e.message.c_str(), kUsage);
-    return 2;
-  }
+  if (int code = parse_command_line("glint render", kUsage, argc, argv, parse, o); code >= 0) return code;
 
   try {
     check_distinct_files(o);

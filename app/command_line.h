@@ -1,0 +1,33 @@
+// What the subcommands (glint render, merge, farm) share on their command line: -h/--help
+// prints the usage (exit 0), a bad argument is reported with the usage (exit 2).
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+namespace glint {
+
+struct UsageError {
+  std::string message;
+};
+
+// Fills `options` from `parse(argc, argv)` (which throws UsageError) and returns -1 to go on,
+// or the exit code once the help or a usage error has been printed.
+template <class Options, class Parse>
+int parse_command_line(const char* command, const char* usage, int argc, char** argv, Parse parse,
+                       Options& options) {
+  for (int i = 0; i < argc; ++i)
+    if (std::string(argv[i]) == "-h" || std::string(argv[i]) == "--help") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+  try {
+    options = parse(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\n\n%s", command, e.message.c_str(), usage);
+    return 2;
+  }
+  return -1;
+}
+
+}  // namespace glint
