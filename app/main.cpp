@@ -29,6 +29,7 @@ const char* const kHelp =
     "                       the viewport has --spp N samples per pixel, then exit (such runs\n"
     "                       neither offer a crash recovery nor autosave)\n"
     "  --spp N              with --screenshot: take it once the viewport has N samples/pixel\n"
+    "  --select NAME        select the sphere or quad named NAME at start (its gizmo shows)\n"
     "  --backend B          auto (the default: the faster on this device), fragment or\n"
     "                       compute: the path tracer's entry point (same image)\n"
     "\n"
@@ -36,6 +37,7 @@ const char* const kHelp =
     "  left drag: orbit    middle or Shift+left drag: pan    wheel: zoom\n"
     "  click: select       Ctrl+click: set the focus distance there\n"
     "  W A S D Q E: fly    F: frame the selection    Del: delete    1-4: example projects\n"
+    "  G / R / T: move / rotate / scale gizmo (drag its arrows, rings, squares or circle)\n"
     "  Ctrl+Z / Ctrl+Shift+Z: undo / redo    Ctrl+N/O/S: new, open, save    Ctrl+Q: quit\n"
     "  drop an image on the window: texture of the selected object (.hdr/.exr: environment)\n"
 #else

@@ -17,6 +17,7 @@
 #include "editor/editor_frame.h"
 #include "editor/file_dialogs.h"
 #include "editor/recent_and_recovery.h"
+#include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
 #include "editor/ui_layout.h"
@@ -162,6 +163,14 @@ bool start_session(Document& doc, EditorState& state, const EditorOptions& optio
   if (!options.project.empty() && !open_document(doc, state, options.project)) {
     std::fprintf(stderr, "glint: %s\n", state.messages.error.c_str());
     if (screenshot_mode) ok = false;
+  }
+  if (!options.select.empty()) {
+    if (const auto found = find_object(doc.scene, options.select)) {
+      doc.selection = *found;
+    } else {
+      std::fprintf(stderr, "glint: --select: no sphere or quad is named '%s'\n", options.select.c_str());
+      if (screenshot_mode) ok = false;
+    }
   }
   if (!screenshot_mode) {
     state.recovery = find_recovery();
@@ -328,6 +337,10 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
       }
       o.width = w;
       o.height = h;
+    } else if (a == "--select") {
+      auto v = value();
+      if (!v) return std::nullopt;
+      o.select = *v;
     } else if (a == "--backend") {
       auto v = value();
       if (!v) return std::nullopt;

@@ -16,6 +16,7 @@ struct EditorOptions {
   int64_t spp = 0;                   // with --screenshot: once the viewport has this many spp
   int width = 1280, height = 800;    // window size in screen coordinates
   std::optional<TraceBackend> backend;  // nullopt: the automatic choice (renderer/backend_choice.h)
+  std::string select;                // non-empty: the sphere or quad selected at start
 };
 
 // Runs until the window is closed (after the unsaved-changes prompt). Returns the exit code.

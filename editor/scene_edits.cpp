@@ -334,6 +334,14 @@ std::string name_of(const Scene& scene, Selection what) {
   }
 }
 
+std::optional<Selection> find_object(const Scene& scene, const std::string& name) {
+  for (size_t i = 0; i < scene.spheres.size(); ++i)
+    if (scene.spheres[i].name == name) return Selection{SelectionKind::sphere, static_cast<int>(i)};
+  for (size_t i = 0; i < scene.quads.size(); ++i)
+    if (scene.quads[i].name == name) return Selection{SelectionKind::quad, static_cast<int>(i)};
+  return std::nullopt;
+}
+
 std::optional<glm::vec3> selection_center(const Scene& scene, Selection what) {
   if (what.kind == SelectionKind::sphere && in_range(scene.spheres, what.index))
     return scene.spheres[static_cast<size_t>(what.index)].center;

@@ -45,6 +45,8 @@ Selection remove(Scene& scene, Selection what);
 // Renames; references follow. Returns false (and changes nothing) if the name is empty or taken.
 bool rename(Scene& scene, Selection what, const std::string& name);
 std::string name_of(const Scene& scene, Selection what);
+// The sphere named `name`, else the quad of that name; nullopt when there is neither.
+std::optional<Selection> find_object(const Scene& scene, const std::string& name);
 
 // Translation of spheres and quads (the gizmo and the numeric fields).
 std::optional<glm::vec3> selection_center(const Scene& scene, Selection what);

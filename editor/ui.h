@@ -58,17 +58,29 @@ struct ViewportView {
   bool user_active = false;
 };
 
+// What a drag on the viewport's gizmo does (editor/ui_gizmo.h).
+enum class GizmoMode { move, rotate, scale };
+
 // The viewport's tools and the drags in progress.
 struct ViewportTools {
   bool focus_tool = false;   // a click sets the focus distance instead of selecting
   bool interacting = false;  // a gizmo, camera or fly gesture is in progress (one undo step)
-  int gizmo_axis = -1;       // axis being dragged, -1 none
+  GizmoMode gizmo_mode = GizmoMode::move;
+  int gizmo_handle = -1;  // handle being dragged (an axis, a ring, the uniform scale circle), -1 none
   int gizmo_hover = -1;
-  glm::vec3 gizmo_start_center{0};
+  // Measured at the press: the mouse, the gizmo's centre on screen, the dragged arrow's screen
+  // vector and world direction, the arrows' world length, and the object as it was.
   ImVec2 gizmo_start_mouse{0, 0};
-  ImVec2 gizmo_axis_screen{0, 0};  // screen vector of the dragged handle at drag start
-  float gizmo_length = 1;          // world length of the handles
-  int camera_button = -1;          // mouse button driving the camera, -1 none
+  ImVec2 gizmo_start_origin{0, 0};
+  ImVec2 gizmo_axis_screen{0, 0};
+  glm::vec3 gizmo_axis_world{0};
+  float gizmo_length = 1;
+  Sphere gizmo_start_sphere;
+  Quad gizmo_start_quad;
+  // A rotation drag: the angle turned so far and the mouse's last angle about the centre.
+  float gizmo_angle = 0;
+  float gizmo_last_mouse_angle = 0;
+  int camera_button = -1;  // mouse button driving the camera, -1 none
   bool camera_moved = false;
   ImVec2 press_pos{0, 0};
 };

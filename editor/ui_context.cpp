@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <initializer_list>
 
 #include <imgui.h>
 #include <implot.h>
@@ -14,6 +15,20 @@ float g_scale = 0;  // the scale the style was built for; 0: none yet
 
 // Keeps the scale sensible whatever a driver or the environment reports.
 float clamp_scale(float s) { return std::isfinite(s) ? std::fmin(std::fmax(s, 0.5f), 4.0f) : 1.0f; }
+
+// ImPlot's sizes (pixels at scale 1) times the scale, from its default style as ImGui's are:
+// paddings, tick lengths, line thicknesses, the default and minimum plot sizes. Alphas and the
+// fit padding (a fraction) stay. (The curves' line weight is set per plot: plot_time_series.)
+ImPlotStyle scaled_plot_style(float scale) {
+  ImPlotStyle s;
+  for (ImVec2* v : {&s.PlotDefaultSize, &s.PlotMinSize, &s.MajorTickLen, &s.MinorTickLen, &s.MajorTickSize,
+                    &s.MinorTickSize, &s.MajorGridSize, &s.MinorGridSize, &s.PlotPadding, &s.LabelPadding,
+                    &s.LegendPadding, &s.LegendInnerPadding, &s.LegendSpacing, &s.MousePosPadding,
+                    &s.AnnotationPadding})
+    *v = ImVec2(v->x * scale, v->y * scale);
+  for (float* f : {&s.PlotBorderSize, &s.DigitalPadding, &s.DigitalSpacing}) *f *= scale;
+  return s;
+}
 
 }  // namespace
 
@@ -47,6 +62,7 @@ void set_content_scale(float scale) {
   style.ScaleAllSizes(scale);
   style.FontScaleDpi = scale;
   ImGui::GetStyle() = style;
+  if (ImPlot::GetCurrentContext()) ImPlot::GetStyle() = scaled_plot_style(scale);
 }
 
 float content_scale() { return g_scale; }

@@ -11,7 +11,8 @@ void create_ui_context(float content_scale);
 void destroy_ui_context();
 
 // Text and style sizes at `scale` (1 = 96 dpi): the font is rasterised at the scaled size (sharp,
-// not stretched) and every padding, spacing and rounding of the dark style is multiplied.
+// not stretched) and every padding, spacing and rounding of the dark style is multiplied, as
+// are ImPlot's paddings, tick lengths and line sizes.
 // Cheap when the scale is unchanged; call it whenever the content scale may have changed.
 void set_content_scale(float scale);
 float content_scale();

@@ -6,6 +6,7 @@
 
 #include "editor/ui.h"
 #include "editor/ui_context.h"
+#include "editor/ui_tip.h"
 
 namespace glint {
 
@@ -76,40 +77,52 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     s.width = std::clamp(size[0], 1, 16384);
     s.height = std::clamp(size[1], 1, 16384);
   }
+  tip("Width and height of the image in pixels (1 to 16384 each).");
   if (ImGui::SmallButton("Film size")) {
     s.width = doc.scene.film.width;
     s.height = doc.scene.film.height;
   }
+  tip("The film's size (Camera > Film size): exactly what the viewport's frame shows.");
   ImGui::SameLine();
   if (ImGui::SmallButton("Viewport aspect")) {
     s.height = std::max(1, int(s.width * state.viewport.size.y / std::max(1.0f, state.viewport.size.x) + 0.5f));
   }
+  tip("Keep the width; set the height to the viewport panel's aspect.");
   if (int64_t(s.width) * doc.scene.film.height != int64_t(s.height) * doc.scene.film.width)
     ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "Not the film's aspect (%dx%d): the viewport's frame shows the film.",
                        doc.scene.film.width, doc.scene.film.height);
   int budget = s.use_time ? 1 : 0;
   ImGui::RadioButton("Samples", &budget, 0);
+  tip("Stop after a number of samples per pixel.");
   ImGui::SameLine();
   ImGui::RadioButton("Time", &budget, 1);
+  tip("Stop after a time: as many samples as fit (more on a faster machine).");
   s.use_time = budget == 1;
   if (s.use_time) {
     float seconds = static_cast<float>(s.seconds);
     if (ImGui::DragFloat("Seconds", &seconds, 0.5f, 0.1f, 86400, "%.1f s", ImGuiSliderFlags_AlwaysClamp))
       s.seconds = seconds;
+    tip("How long to render, in seconds.");
   } else {
     int spp = static_cast<int>(std::min<int64_t>(s.samples, 1 << 30));
     if (ImGui::InputInt("Samples/pixel", &spp)) s.samples = std::max(1, spp);
+    tip("Samples per pixel: the noise (standard deviation) falls as one over its square root.");
   }
   char path[1024];
   std::snprintf(path, sizeof path, "%s", s.output.string().c_str());
   if (ImGui::InputText("Output file", path, sizeof path)) s.output = path;
+  tip("Where the image is written; its extension picks the format.");
   static const char* const kFormats[] = {".png", ".hdr", ".exr"};
   int format = 0;
   for (int i = 0; i < 3; ++i)
     if (s.output.extension() == kFormats[i]) format = i;
   if (ImGui::Combo("Format", &format, "PNG (tonemapped)\0HDR (linear)\0EXR (linear float)\0")) s.output.replace_extension(kFormats[format]);
+  tip("PNG: 8-bit, with the display's exposure and tonemap. HDR, EXR: the linear radiance\n"
+      "(EXR as 32-bit floats), for further processing.");
   if (ImGui::SmallButton("Choose file...")) choose_file(doc, state, FilePurpose::export_output);
+  tip("Choose the output file in a file dialog.");
   ImGui::Checkbox("Denoise (biased; EXR keeps the noisy layer)", &s.denoise);
+  tip("Filter the noise with Open Image Denoise: smoother, but detail may blur (biased).");
   ImGui::PopItemWidth();
   ImGui::EndDisabled();
 
@@ -122,11 +135,13 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
                   static_cast<long long>(job.samples()), job.elapsed_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
+    tip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
     ImGui::TextUnformatted(export_eta(job.progress(), job.elapsed_seconds()).c_str());
     if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";
     }
+    tip("Stop the export.");
   } else {
     ImGui::BeginDisabled(!problem.empty());
     if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
@@ -143,6 +158,7 @@ void draw_export_dialog(Document& doc, EditorState& state) {
         show_error(state, std::string("Cannot export: ") + e.what());
       }
     }
+    tip("Render the scene with these settings and write the file (the viewport pauses meanwhile).");
     ImGui::EndDisabled();
     if (!state.export_ui.message.empty()) ImGui::TextWrapped("%s", state.export_ui.message.c_str());
   }

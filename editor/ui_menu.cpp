@@ -70,6 +70,13 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   }
   if (key_pressed(ImGuiKey_Delete)) delete_item(doc, state, doc.selection);
   if (key_pressed(ImGuiKey_F)) frame_selection(doc);
+  // The gizmo's mode: G and R as in Blender; its S (scale) flies back here, so T. Not while a
+  // gizmo drag is under way (it is measured in the mode it started in).
+  if (state.tools.gizmo_handle < 0) {
+    if (key_pressed(ImGuiKey_G)) state.tools.gizmo_mode = GizmoMode::move;
+    if (key_pressed(ImGuiKey_R)) state.tools.gizmo_mode = GizmoMode::rotate;
+    if (key_pressed(ImGuiKey_T)) state.tools.gizmo_mode = GizmoMode::scale;
+  }
   for (int n = 1; n <= 4; ++n)
     if (key_pressed(ImGuiKey(ImGuiKey_1 + n - 1))) {
       auto file = example_project(state, n);
@@ -147,6 +154,15 @@ void draw_main_menu(Document& doc, EditorState& state) {
   }
   if (ImGui::BeginMenu("View")) {
     if (ImGui::MenuItem("Frame selection", "F")) frame_selection(doc);
+    ImGui::Separator();
+    const bool dragging = state.tools.gizmo_handle >= 0;
+    if (ImGui::MenuItem("Move gizmo", "G", state.tools.gizmo_mode == GizmoMode::move, !dragging))
+      state.tools.gizmo_mode = GizmoMode::move;
+    if (ImGui::MenuItem("Rotate gizmo", "R", state.tools.gizmo_mode == GizmoMode::rotate, !dragging))
+      state.tools.gizmo_mode = GizmoMode::rotate;
+    if (ImGui::MenuItem("Scale gizmo", "T", state.tools.gizmo_mode == GizmoMode::scale, !dragging))
+      state.tools.gizmo_mode = GizmoMode::scale;
+    ImGui::Separator();
     ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.tools.focus_tool);
     if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
     if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};

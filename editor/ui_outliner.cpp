@@ -4,11 +4,12 @@
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
+#include "editor/ui_tip.h"
 
 namespace glint {
 namespace {
 
-// One selectable row with a context menu and inline renaming (double-click or F2).
+// One selectable row with a context menu and inline renaming (double-click or the menu).
 void row(Document& doc, EditorState& state, Selection item, const std::string& name, const char* suffix = "") {
   ImGui::PushID(static_cast<int>(item.kind) * 100000 + item.index);
   if (state.renaming.item == item) {
@@ -32,7 +33,12 @@ void row(Document& doc, EditorState& state, Selection item, const std::string& n
         std::snprintf(state.renaming.buffer, sizeof state.renaming.buffer, "%s", name.c_str());
       }
     }
-    if (ImGui::BeginPopupContextItem()) {
+    // After a moment's rest: a list is passed over often. The camera and the environment
+    // cannot be renamed, duplicated or deleted.
+    const bool fixed = item.kind == SelectionKind::camera || item.kind == SelectionKind::environment;
+    resting_tip(fixed ? "Click to edit it in Properties."
+                      : "Click to select, double-click to rename; right-click to rename, duplicate or delete.");
+    if (!fixed && ImGui::BeginPopupContextItem()) {
       doc.selection = item;
       if (ImGui::MenuItem("Rename")) {
         state.renaming.item = item;
@@ -49,7 +55,9 @@ void row(Document& doc, EditorState& state, Selection item, const std::string& n
 bool section(const char* label, int count) {
   char header[64];
   std::snprintf(header, sizeof header, "%s (%d)###%s", label, count, label);
-  return ImGui::CollapsingHeader(header, ImGuiTreeNodeFlags_DefaultOpen);
+  const bool open = ImGui::CollapsingHeader(header, ImGuiTreeNodeFlags_DefaultOpen);
+  resting_tip("Click to fold or unfold the list.");
+  return open;
 }
 
 }  // namespace
@@ -59,14 +67,20 @@ void draw_outliner(Document& doc, EditorState& state) {
   // Buttons first: they stay visible however long the lists grow.
   float w = (ImGui::GetContentRegionAvail().x - ImGui::GetStyle().ItemSpacing.x) * 0.5f;
   if (ImGui::Button("Add sphere", ImVec2(w, 0))) doc.selection = {SelectionKind::sphere, add_sphere(s)};
+  tip("A new sphere in front of the camera, at the focus distance (selected).");
   ImGui::SameLine();
   if (ImGui::Button("Add quad", ImVec2(w, 0))) doc.selection = {SelectionKind::quad, add_quad(s)};
+  tip("A new quad facing the camera, at the focus distance (selected).");
   bool object = doc.selection.kind == SelectionKind::sphere || doc.selection.kind == SelectionKind::quad ||
                 doc.selection.kind == SelectionKind::material || doc.selection.kind == SelectionKind::texture;
   ImGui::BeginDisabled(!object);
   if (ImGui::Button("Duplicate", ImVec2(w, 0))) doc.selection = {doc.selection.kind, duplicate(s, doc.selection)};
+  tip("A copy of the selected object, material or texture under a new name (an object a little\n"
+      "to the side).");
   ImGui::SameLine();
   if (ImGui::Button("Delete", ImVec2(w, 0))) delete_item(doc, state, doc.selection);
+  tip("Delete the selected object, material or texture (Del); a material that objects use asks\n"
+      "first.");
   ImGui::EndDisabled();
   ImGui::Separator();
 
@@ -83,6 +97,7 @@ void draw_outliner(Document& doc, EditorState& state) {
       row(doc, state, {SelectionKind::material, i}, s.materials[i].name, suffix.c_str());
     }
     if (ImGui::SmallButton("+ material")) doc.selection = {SelectionKind::material, add_material(s, MaterialType::matte)};
+    tip("A new grey matte material (selected; Add > Material for other types).");
   }
   if (section("Textures", int(s.textures.size()))) {
     for (int i = 0; i < int(s.textures.size()); ++i) {
@@ -94,6 +109,7 @@ void draw_outliner(Document& doc, EditorState& state) {
       row(doc, state, {SelectionKind::texture, i}, s.textures[i].name);
     }
     if (ImGui::SmallButton("+ texture from file")) choose_file(doc, state, FilePurpose::add_texture);
+    tip("Add an image file as a texture (or drop it on the window over a selected object).");
   }
   ImGui::EndChild();
 }

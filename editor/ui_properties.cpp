@@ -6,6 +6,7 @@
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
+#include "editor/ui_tip.h"
 #include "renderer/scene_fields.h"
 
 namespace glint {
@@ -27,11 +28,6 @@ void section_title(const char* text) {
   ImGui::Spacing();
   ImGui::TextColored(ImVec4(0.55f, 0.75f, 1.0f, 1.0f), "%s", text);
   ImGui::Separator();
-}
-
-// The hover help of the item just drawn (every property has one).
-void tip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
 }
 
 ImTextureID tex_id(unsigned t) { return static_cast<ImTextureID>(t); }
@@ -337,8 +333,11 @@ void draw_properties(Document& doc, EditorState& state) {
 
   section_title("Display");
   // Exposure and tonemap only re-run the tonemap pass (the renderer's display digest).
-  ImGui::SliderFloat("Exposure", &s.display.exposure, -10, 10, "%.2f stops", kClamp);
-  tip("Brightness in stops (re-runs only the tonemap: the samples are kept).");
+  // A drag field, not a slider: a slider's grab sits on its value text (at 0 stops, in the
+  // middle of "0.00 stops").
+  ImGui::DragFloat("Exposure", &s.display.exposure, 0.02f, -10, 10, "%+.2f stops", kClamp);
+  tip("Brightness in stops, -10 to +10: drag sideways, or Ctrl+click to type\n"
+      "(re-runs only the tonemap: the samples are kept).");
   int tonemap = static_cast<int>(s.display.tonemap);
   static const char* const kTonemaps[] = {"filmic", "linear"};
   if (ImGui::Combo("Tonemap", &tonemap, kTonemaps, 2)) s.display.tonemap = static_cast<Tonemap>(tonemap);

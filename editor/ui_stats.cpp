@@ -6,6 +6,7 @@
 #include <implot.h>
 
 #include "editor/ui.h"
+#include "editor/ui_context.h"
 
 namespace glint {
 
@@ -14,8 +15,11 @@ void plot_time_series(const char* plot_id, const TimeSeries& series, bool log_y,
   // The legend names the curve; the y axis stays unlabelled (a long name would be cut).
   ImPlot::SetupAxes("seconds", nullptr, ImPlotAxisFlags_AutoFit, ImPlotAxisFlags_AutoFit);
   if (log_y) ImPlot::SetupAxisScale(ImAxis_Y1, ImPlotScale_Log10);
-  if (!series.empty())
-    ImPlot::PlotLine(series.label.c_str(), series.t.data(), series.value.data(), static_cast<int>(series.t.size()));
+  if (!series.empty()) {
+    ImPlotSpec spec;
+    spec.LineWeight = ui_units(1);  // one pixel at scale 1, two at scale 2, like the style's sizes
+    ImPlot::PlotLine(series.label.c_str(), series.t.data(), series.value.data(), static_cast<int>(series.t.size()), spec);
+  }
   ImPlot::EndPlot();
 }
 

@@ -1,7 +1,7 @@
-// The viewport panel: click to select or focus, a translate gizmo drawn with ImGui's draw list,
+// The viewport panel: click to select or focus, the move/rotate/scale gizmo (editor/ui_gizmo.h),
 // mouse navigation (orbit, pan, zoom), and the rendered image under them.
+#include <algorithm>
 #include <cmath>
-
 
 #include "editor/camera_control.h"
 #include "editor/film_frame.h"
@@ -9,67 +9,10 @@
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
+#include "editor/ui_gizmo.h"
 #include "editor/ui_layout.h"
 
 namespace glint {
-namespace {
-
-const ImU32 kAxisColors[3] = {IM_COL32(230, 70, 70, 255), IM_COL32(80, 210, 80, 255), IM_COL32(80, 130, 255, 255)};
-
-float segment_distance(ImVec2 p, ImVec2 a, ImVec2 b) {
-  ImVec2 ab{b.x - a.x, b.y - a.y}, ap{p.x - a.x, p.y - a.y};
-  float len2 = ab.x * ab.x + ab.y * ab.y;
-  float t = len2 > 0 ? std::clamp((ap.x * ab.x + ap.y * ab.y) / len2, 0.0f, 1.0f) : 0.0f;
-  float dx = ap.x - t * ab.x, dy = ap.y - t * ab.y;
-  return std::sqrt(dx * dx + dy * dy);
-}
-
-struct Gizmo {
-  bool visible = false;
-  glm::vec3 center{0};
-  float length = 1;  // world units
-  ImVec2 origin{0, 0}, ends[3] = {};
-  bool end_visible[3] = {false, false, false};
-};
-
-Gizmo make_gizmo(const Document& doc, ImVec2 viewport_origin, ImVec2 size) {
-  Gizmo g;
-  auto center = selection_center(doc.scene, doc.selection);
-  if (!center) return g;
-  const Camera cam = shown_camera(doc.scene, {size.x, size.y});
-  glm::vec2 o;
-  if (!project_to_viewport(cam, {size.x, size.y}, *center, o)) return g;
-  // A constant screen size: a fraction of the view height at the object's depth.
-  glm::vec3 forward = glm::normalize(cam.target - cam.position);
-  float depth = std::max(1e-4f, glm::dot(*center - cam.position, forward));
-  g.length = depth * std::tan(glm::radians(cam.vfov_deg) * 0.5f) * 0.3f;
-  g.center = *center;
-  g.origin = ImVec2(viewport_origin.x + o.x, viewport_origin.y + o.y);
-  for (int a = 0; a < 3; ++a) {
-    glm::vec3 axis(0);
-    axis[a] = 1;
-    glm::vec2 e;
-    g.end_visible[a] = project_to_viewport(cam, {size.x, size.y}, *center + axis * g.length, e);
-    g.ends[a] = ImVec2(viewport_origin.x + e.x, viewport_origin.y + e.y);
-  }
-  g.visible = true;
-  return g;
-}
-
-void draw_gizmo(const Gizmo& g, int hover, int active) {
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  for (int a = 0; a < 3; ++a) {
-    if (!g.end_visible[a]) continue;
-    const float thick = ui_units((a == hover || a == active) ? 5.0f : 3.0f);
-    ImU32 col = (a == active) ? IM_COL32(255, 230, 80, 255) : kAxisColors[a];
-    dl->AddLine(g.origin, g.ends[a], IM_COL32(0, 0, 0, 160), thick + 2);
-    dl->AddLine(g.origin, g.ends[a], col, thick);
-    dl->AddCircleFilled(g.ends[a], thick + ui_units(3), col);
-  }
-  dl->AddCircleFilled(g.origin, ui_units(4), IM_COL32(255, 255, 255, 220));
-}
-
-}  // namespace
 
 bool project_to_viewport(const Camera& camera, glm::vec2 size, glm::vec3 p, glm::vec2& out) {
   // The inverse of the shader's camera_ray (shaders/lib/camera.glsl) through the lens centre.
@@ -163,74 +106,60 @@ void draw_viewport(Document& doc, EditorState& state) {
   ImGui::BeginChild("##viewport overlay", size, ImGuiChildFlags_None,
                     ImGuiWindowFlags_NoBackground | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
 
+  // The gizmo's mode buttons first: where they are, they take the mouse from the item below.
+  const float inset = ui_units(6);
+  draw_gizmo_toolbar(state.tools, ImVec2(origin.x + inset, origin.y + inset));
+  ImGui::SetCursorScreenPos(origin);
   // One item over the whole image: ImGui then knows a drag here is in progress.
   ImGui::InvisibleButton("##viewport", size,
                          ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                              ImGuiButtonFlags_MouseButtonMiddle);
   const bool hovered = ImGui::IsItemHovered();
-  Gizmo gizmo = make_gizmo(doc, origin, size);
-  state.tools.gizmo_hover = -1;
+  ViewportTools& tools = state.tools;
+  GizmoHandles gizmo = make_gizmo(doc, tools.gizmo_mode, origin, size);
+  tools.gizmo_hover = -1;
   // Ctrl+click and the focus tool always focus, even on the gizmo.
-  const bool focusing = state.tools.focus_tool || io.KeyCtrl;
-  if (gizmo.visible && hovered && !focusing && state.tools.gizmo_axis < 0 && state.tools.camera_button < 0)
-    for (int a = 0; a < 3; ++a)
-      if (gizmo.end_visible[a] && segment_distance(io.MousePos, gizmo.origin, gizmo.ends[a]) < ui_units(7)) state.tools.gizmo_hover = a;
+  const bool focusing = tools.focus_tool || io.KeyCtrl;
+  if (hovered && !focusing && tools.gizmo_handle < 0 && tools.camera_button < 0)
+    tools.gizmo_hover = gizmo_hit(gizmo, tools.gizmo_mode, io.MousePos);
 
   // Presses start a gizmo drag or a camera gesture.
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && state.tools.gizmo_hover >= 0) {
-    state.tools.gizmo_axis = state.tools.gizmo_hover;
-    state.tools.gizmo_start_center = gizmo.center;
-    state.tools.gizmo_start_mouse = io.MousePos;
-    const ImVec2& e = gizmo.ends[state.tools.gizmo_axis];
-    state.tools.gizmo_axis_screen = ImVec2(e.x - gizmo.origin.x, e.y - gizmo.origin.y);
-    state.tools.gizmo_length = gizmo.length;
-  } else if (hovered && state.tools.camera_button < 0) {
+  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && tools.gizmo_hover >= 0) {
+    start_gizmo_drag(doc, tools, gizmo, tools.gizmo_hover, io.MousePos);
+  } else if (hovered && tools.camera_button < 0) {
     for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
       if (ImGui::IsMouseClicked(b)) {
-        state.tools.camera_button = b;
-        state.tools.camera_moved = false;
-        state.tools.press_pos = io.MousePos;
+        tools.camera_button = b;
+        tools.camera_moved = false;
+        tools.press_pos = io.MousePos;
         break;
       }
   }
 
-  if (state.tools.gizmo_axis >= 0) {
-    if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-      // Move along the axis by the mouse motion projected on the handle's screen direction.
-      ImVec2 s = state.tools.gizmo_axis_screen;
-      float s2 = s.x * s.x + s.y * s.y;
-      ImVec2 m{io.MousePos.x - state.tools.gizmo_start_mouse.x, io.MousePos.y - state.tools.gizmo_start_mouse.y};
-      float along = s2 > 1e-6f ? (m.x * s.x + m.y * s.y) / s2 * state.tools.gizmo_length : 0.0f;
-      glm::vec3 axis(0);
-      axis[state.tools.gizmo_axis] = 1;
-      auto now = selection_center(doc.scene, doc.selection);
-      if (now) {
-        glm::vec3 delta = state.tools.gizmo_start_center + axis * along - *now;
-        if (glm::length(delta) > 0) translate(doc.scene, doc.selection, delta);
-      }
-      state.tools.interacting = true;
-    } else {
-      state.tools.gizmo_axis = -1;
-    }
-  } else if (state.tools.camera_button >= 0) {
-    int b = state.tools.camera_button;
+  if (tools.gizmo_handle >= 0) {
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && update_gizmo_drag(doc, tools, io.MousePos))
+      tools.interacting = true;
+    else
+      tools.gizmo_handle = -1;
+  } else if (tools.camera_button >= 0) {
+    int b = tools.camera_button;
     if (ImGui::IsMouseDown(b)) {
       ImVec2 d = io.MouseDelta;
-      float moved = std::hypot(io.MousePos.x - state.tools.press_pos.x, io.MousePos.y - state.tools.press_pos.y);
-      if (moved > 3) state.tools.camera_moved = true;
-      if (state.tools.camera_moved && (d.x != 0 || d.y != 0)) {
+      float moved = std::hypot(io.MousePos.x - tools.press_pos.x, io.MousePos.y - tools.press_pos.y);
+      if (moved > 3) tools.camera_moved = true;
+      if (tools.camera_moved && (d.x != 0 || d.y != 0)) {
         Camera& cam = doc.scene.camera;
         bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
         if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
         else orbit(cam, -d.x * 0.008f, -d.y * 0.008f);
       }
-      if (state.tools.camera_moved) state.tools.interacting = true;
+      if (tools.camera_moved) tools.interacting = true;
     } else {
-      if (b == ImGuiMouseButton_Left && !state.tools.camera_moved) {
-        glm::vec2 film{(state.tools.press_pos.x - origin.x) / size.x, (state.tools.press_pos.y - origin.y) / size.y};
+      if (b == ImGuiMouseButton_Left && !tools.camera_moved) {
+        glm::vec2 film{(tools.press_pos.x - origin.x) / size.x, (tools.press_pos.y - origin.y) / size.y};
         click_viewport(doc, state, film, focusing);
       }
-      state.tools.camera_button = -1;
+      tools.camera_button = -1;
     }
   }
   if (hovered && io.MouseWheel != 0) dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
@@ -243,13 +172,15 @@ void draw_viewport(Document& doc, EditorState& state) {
   state.viewport.outline.clear();
   for (glm::vec2 p : selection_outline(doc.scene, doc.selection, {size.x, size.y}))
     state.viewport.outline.push_back(ImVec2(origin.x + p.x, origin.y + p.y));
-  state.viewport.user_active = ImGui::IsAnyItemActive() || state.tools.interacting || io.MouseWheel != 0 ||
+  state.viewport.user_active = ImGui::IsAnyItemActive() || tools.interacting || io.MouseWheel != 0 ||
                                io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || ImGui::IsAnyMouseDown();
-  gizmo = make_gizmo(doc, origin, size);  // where the object is now
-  if (gizmo.visible) draw_gizmo(gizmo, state.tools.gizmo_hover, state.tools.gizmo_axis);
-  if (state.tools.focus_tool)
-    dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255),
-                "Focus tool: click a surface");
+  gizmo = make_gizmo(doc, tools.gizmo_mode, origin, size);  // where the object is now
+  draw_gizmo(gizmo, tools.gizmo_mode, tools.gizmo_hover, tools.gizmo_handle);
+  const char* hint = nullptr;
+  if (tools.focus_tool) hint = "Focus tool: click a surface";
+  else if (tools.gizmo_mode == GizmoMode::rotate && doc.selection.kind == SelectionKind::sphere)
+    hint = "Rotate: a sphere looks the same turned (select a quad)";
+  if (hint) dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255), hint);
   ImGui::EndChild();
   ImGui::End();
 }

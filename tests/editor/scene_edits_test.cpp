@@ -229,6 +229,20 @@ TEST(SceneEdits, TranslateMovesSpheresAndQuads) {
   EXPECT_FALSE(selection_center(s, {SelectionKind::material, 0}));
 }
 
+TEST(SceneEdits, FindObjectBySphereOrQuadName) {
+  Scene s = new_scene();
+  s.spheres.push_back({"twin", {3, 0, 0}, 1, s.materials[0].name});
+  Quad q;
+  q.name = "twin";
+  s.quads.push_back(q);
+  q.name = "panel";
+  s.quads.push_back(q);
+  EXPECT_EQ(find_object(s, "twin"), (Selection{kSphere, int(s.spheres.size()) - 1}));  // spheres first
+  EXPECT_EQ(find_object(s, "panel"), (Selection{kQuad, int(s.quads.size()) - 1}));
+  EXPECT_FALSE(find_object(s, "nothing"));
+  EXPECT_FALSE(find_object(s, s.materials[0].name));  // materials are not objects
+}
+
 TEST(SceneEdits, SelectionBoundsCoverTheObject) {
   Scene s = new_scene();
   auto b = selection_bounds(s, {kQuad, 0});

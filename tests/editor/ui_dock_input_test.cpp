@@ -12,6 +12,7 @@
 #define GLFW_INCLUDE_NONE  // key codes only; GL comes from epoxy
 #include <GLFW/glfw3.h>
 #include <imgui_internal.h>  // FindWindowByName: where the docked panels are
+#include <implot.h>
 
 #include "editor/editor_frame.h"
 #include "editor/scene_edits.h"
@@ -142,18 +143,19 @@ TEST_F(UiDockInputTest, LayoutIsSavedToAndLoadedFromTheConfigFolder) {
   EXPECT_NE(window(kViewportWindow).DockNode, nullptr);
 }
 
-// Content scale 2 on a display of twice the pixels: text, widgets and panels are all twice the
-// size, and the font is rasterised at that size (sharp), not stretched.
+// Content scale 2 on a display of twice the pixels: text, widgets, panels and the plots' sizes
+// are all twice the size, and the font is rasterised at that size (sharp), not stretched.
 TEST_F(UiDockInputTest, PanelsAndTextScaleWithTheContentScale) {
   struct Sizes {
     float font, frame, outliner, properties, stats_h, text_w, baked;
+    ImPlotStyle plot;
   };
   auto measure = [&](float scale) {
     start(scale, ImVec2(1200 * scale, 700 * scale));
     ImGui::NewFrame();  // fonts and text sizes are asked within a frame
     Sizes s{ImGui::GetFontSize(), ImGui::GetFrameHeight(), window(kOutlinerWindow).Size.x,
             window(kPropertiesWindow).Size.x, window(kStatsWindow).Size.y, ImGui::CalcTextSize("Add sphere").x,
-            ImGui::GetFontBaked()->Size};
+            ImGui::GetFontBaked()->Size, ImPlot::GetStyle()};
     ImGui::EndFrame();
     destroy_ui_context();
     return s;
@@ -165,6 +167,18 @@ TEST_F(UiDockInputTest, PanelsAndTextScaleWithTheContentScale) {
   EXPECT_NEAR(two.properties, 2 * one.properties, 1.0f);
   EXPECT_NEAR(two.stats_h, 2 * one.stats_h, 1.0f);
   EXPECT_NEAR(two.text_w, 2 * one.text_w, 0.05f * two.text_w);  // hinting may differ by a pixel
+  // ImPlot's own sizes follow: its paddings, tick lengths and line sizes.
+  EXPECT_FLOAT_EQ(one.plot.PlotPadding.x, ImPlotStyle().PlotPadding.x);
+  EXPECT_FLOAT_EQ(two.plot.PlotPadding.x, 2 * one.plot.PlotPadding.x);
+  EXPECT_FLOAT_EQ(two.plot.PlotPadding.y, 2 * one.plot.PlotPadding.y);
+  EXPECT_FLOAT_EQ(two.plot.LabelPadding.x, 2 * one.plot.LabelPadding.x);
+  EXPECT_FLOAT_EQ(two.plot.LegendPadding.x, 2 * one.plot.LegendPadding.x);
+  EXPECT_FLOAT_EQ(two.plot.LegendInnerPadding.y, 2 * one.plot.LegendInnerPadding.y);
+  EXPECT_FLOAT_EQ(two.plot.MajorTickLen.x, 2 * one.plot.MajorTickLen.x);
+  EXPECT_FLOAT_EQ(two.plot.MajorGridSize.x, 2 * one.plot.MajorGridSize.x);
+  EXPECT_FLOAT_EQ(two.plot.PlotBorderSize, 2 * one.plot.PlotBorderSize);
+  EXPECT_FLOAT_EQ(two.plot.PlotMinSize.y, 2 * one.plot.PlotMinSize.y);
+  EXPECT_FLOAT_EQ(two.plot.MinorAlpha, one.plot.MinorAlpha);  // an alpha, not a size
   EXPECT_FLOAT_EQ(one.baked, one.font);
   EXPECT_FLOAT_EQ(two.baked, two.font);
 }
