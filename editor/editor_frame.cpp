@@ -1,5 +1,7 @@
 #include "editor/editor_frame.h"
 
+#include <chrono>
+
 #include <imgui.h>
 
 #include "editor/ui.h"
@@ -10,7 +12,10 @@ namespace glint {
 void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport) {
   draw_editor_ui(doc, state);
   state.viewport.frame = viewport.render(doc.scene, viewport_request(state));
+  const auto export_start = std::chrono::steady_clock::now();
   step_export(state, viewport.trace_seconds());
+  viewport.add_trace_seconds(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count());
   doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting);
   show_viewport_image(state.viewport);
   ImGui::Render();

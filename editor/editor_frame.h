@@ -10,7 +10,8 @@ class ViewportRenderer;
 
 // 1. input and widgets edit the document (draw_editor_ui: no rendering in there);
 // 2. the viewport renders the edited scene at the panel's size of this frame;
-// 3. a running export traces its slice (the viewport traced nothing meanwhile);
+// 3. a running export traces its slice (the viewport traced nothing meanwhile), timed as the
+//    frame's tracing for the frame budget;
 // 4. undo is derived (Document::end_frame), a drag in progress being one step;
 // 5. the viewport image goes under the panels and ImGui::Render() builds the draw data.
 void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport);

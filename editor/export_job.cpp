@@ -53,6 +53,8 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
   renderer_->sync(scene_, settings_.width, settings_.height);
   RenderSessionOptions session;
   session.target = settings_.use_time ? RenderTarget{0, settings_.seconds} : RenderTarget{settings_.samples, 0};
+  // A pass may take far longer than a UI frame (llvmpipe): in bands that fit the slice.
+  session.tiled = true;
   session_ = std::make_unique<RenderSession>(*renderer_, session);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -60,6 +62,10 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
 ExportJob::~ExportJob() = default;
 
 int64_t ExportJob::samples() const { return renderer_ ? renderer_->sample_count() : 0; }
+
+int64_t ExportJob::step_pixel_samples() const {
+  return session_ ? session_->step_pixel_samples() : 0;
+}
 
 float ExportJob::progress() const {
   if (state_ == State::done) return 1;
@@ -84,7 +90,8 @@ bool ExportJob::step(double slice_seconds) {
     return state_ == State::running;
   }
   try {
-    // Passes about a quarter of the slice: fewer passes, yet the UI gets its frames.
+    // Passes of about a quarter of the slice where they are that fast (fewer passes); slower
+    // ones are traced in bands that fit the slice, so the UI gets its frames either way.
     BatchPolicy batch;
     batch.grow_below = slice_seconds * 0.25;
     batch.shrink_above = slice_seconds;

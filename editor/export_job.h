@@ -1,6 +1,7 @@
 // Export of a final render from the editor, without blocking it: a second GpuRenderer at the
 // export size and a RenderSession that traces one slice per call of step(), so the UI keeps
-// running between slices.
+// running between slices. A pass longer than a slice is traced in bands of rows over several
+// slices (RenderSessionOptions::tiled), with the same image as in one go.
 // No ImGui here (ui_export.cpp is its dialog); needs a current OpenGL 4.5 context.
 #pragma once
 
@@ -50,9 +51,12 @@ class ExportJob {
   ExportJob(const ExportJob&) = delete;
   ExportJob& operator=(const ExportJob&) = delete;
 
-  // Traces for about `slice_seconds` (at least one pass) and writes the file when the target
-  // is reached. Leaves the default framebuffer bound. Returns true while still running.
+  // Traces for about `slice_seconds` (at least one band of rows of a pass) and writes the file
+  // when the target is reached. Leaves the default framebuffer bound. Returns true while still
+  // running.
   bool step(double slice_seconds);
+  // Pixel-samples the last step traced (RenderSession::step_pixel_samples).
+  int64_t step_pixel_samples() const;
   void cancel();
 
   State state() const { return state_; }

@@ -39,7 +39,7 @@ void AovPass::resize(int width, int height) {
   // at the first draw for the pipeline state (Mesa's llvmpipe JITs then, blending included, a
   // second or more) does it here, not inside the first timed trace pass.
   program_->set("u_samples_per_pass", 0);
-  draw();
+  draw(0, height_);
   glFinish();
 }
 
@@ -49,20 +49,22 @@ void AovPass::clear() {
     if (t) glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
 }
 
-void AovPass::draw() {
+void AovPass::draw(int first_row, int rows) {
   if (!fbo_) return;
   program_->set("u_resolution", glm::ivec2(width_, height_));
   glUseProgram(program_->id());
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, width_, height_);
   glDisable(GL_DEPTH_TEST);
-  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, first_row, width_, rows);  // window row y is texel row y
   glEnable(GL_BLEND);  // float32 targets blend unclamped: a running sum
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -33,9 +33,10 @@ class AovPass {
   void clear();
   // The program to set the trace uniforms on before draw().
   GlProgram& program() { return *program_; }
-  // Adds the samples the program's uniforms name (u_samples_before, u_samples_per_pass) with
-  // the scene's buffers and textures already bound.
-  void draw();
+  // Adds the samples the program's uniforms name (u_samples_before, u_samples_per_pass) to
+  // image rows [first_row, first_row + rows), with the scene's buffers and textures already
+  // bound.
+  void draw(int first_row, int rows);
   AovImages read() const;
 
  private:

@@ -201,6 +201,7 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
     display_stale_ = true;
   }
   if (result.accumulation_reset) {
+    pass_ = {};  // a pass under way is abandoned
     samples_ = 0;
     passes_ = 0;
     threshold_samples_ = 0;
@@ -619,19 +620,20 @@ void GpuRenderer::start_variant_if_missing() {
   variants_.push_back(std::move(v));
 }
 
-// Binds program, buffers and textures for a pass that adds `samples` samples: into the spare
-// accumulation buffer (fragment), or in place (compute).
-GlProgram& GpuRenderer::bind_trace_pass(int samples) {
-  GlProgram& p = choose_trace_program();
+// Binds `p`, buffers and textures for a draw that adds `samples` samples to pixels that have
+// `samples_before` (u_samples_before) at adaptive sampling's pass `pass_index`: from buffer
+// `source` into the other one (fragment), or in place (compute).
+GlProgram& GpuRenderer::bind_trace_pass(GlProgram& p, int samples, int64_t samples_before,
+                                        int64_t pass_index, int source) {
   apply_trace_uniforms(p, uniforms_);
   p.set("u_resolution", glm::ivec2(width_, height_));
-  p.set("u_samples_before", static_cast<unsigned>(samples_));
+  p.set("u_samples_before", static_cast<unsigned>(samples_before));
   p.set("u_samples_per_pass", samples);
   p.set("u_adaptive", options_.adaptive ? 1 : 0);
   p.set("u_adaptive_threshold", adaptive_threshold_);
   p.set("u_adaptive_min_samples", static_cast<unsigned>(std::max(2, options_.adaptive_min_samples)));
   p.set("u_adaptive_every", static_cast<unsigned>(std::max(1, options_.adaptive_every)));
-  p.set("u_pass_index", static_cast<unsigned>(passes_));
+  p.set("u_pass_index", static_cast<unsigned>(pass_index));
   glUseProgram(p.id());
   for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
   glBindTextureUnit(1, texel_textures_[0]);
@@ -641,15 +643,15 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
     bind_trace_images(targets(0));
     return p;
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[1 - current_]);
+  glBindFramebuffer(GL_FRAMEBUFFER, accumulation_fbo_[1 - source]);
   glViewport(0, 0, width_, height_);
   glDisable(GL_BLEND);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_SCISSOR_TEST);
-  glBindTextureUnit(0, accumulation_[current_]);
-  glBindTextureUnit(3, compensation_[current_]);
-  glBindTextureUnit(5, variance_[current_]);
-  glBindTextureUnit(6, variance_compensation_[current_]);
+  glBindTextureUnit(0, accumulation_[source]);
+  glBindTextureUnit(3, compensation_[source]);
+  glBindTextureUnit(5, variance_[source]);
+  glBindTextureUnit(6, variance_compensation_[source]);
   glBindVertexArray(vao_);
   return p;
 }
@@ -657,10 +659,11 @@ GlProgram& GpuRenderer::bind_trace_pass(int samples) {
 // One pixel of the spare buffer, no samples (it is overwritten by the next pass): a driver that
 // compiles at the first draw (Mesa's llvmpipe JITs then, 0.6-1 s) does it here, not inside the
 // first timed pass. The compute path has no spare buffer: one group with a resolution of 0x0,
-// whose invocations all return before touching the images.
+// whose invocations all return before touching the images. Not while a pass is under way (its
+// rows already traced are in the spare buffer).
 void GpuRenderer::warm_up_trace_program() {
-  if (width_ <= 0) return;
-  GlProgram& p = bind_trace_pass(0);
+  if (width_ <= 0 || pass_under_way()) return;
+  GlProgram& p = bind_trace_pass(choose_trace_program(), 0, samples_, passes_, current_);
   if (renderer_options_.backend == TraceBackend::compute) {
     p.set("u_resolution", glm::ivec2(0, 0));
     glDispatchCompute(1, 1, 1);
@@ -674,10 +677,13 @@ void GpuRenderer::warm_up_trace_program() {
 }
 
 void GpuRenderer::trace(int samples) {
+  begin_pass(samples);
+  trace_rows(height_);
+}
+
+void GpuRenderer::begin_pass(int samples) {
+  if (pass_under_way()) throw std::logic_error("a trace pass is already under way");
   if (samples <= 0 || width_ <= 0) return;
-  collect_trace_timers(false);  // finished ones only, so the editor's list stays short
-  // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
-  // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
   // Adaptive sampling compares each pixel with the image's mean error per sample, refreshed
   // from the pixels' minimum on whenever the sample count has grown by a quarter (a small
   // read-back that waits for the GPU, renderer/error_estimate.h: O(log n) of them per render,
@@ -687,30 +693,63 @@ void GpuRenderer::trace(int samples) {
     adaptive_threshold_ = static_cast<float>(estimate_error().relmse_per_sample);
     threshold_samples_ = samples_;
   }
+  pass_.samples = samples;
+  pass_.next_row = 0;
+  pass_.program = &choose_trace_program();
+}
+
+// Each draw of the pass over rows [first, last): a pixel depends on its own previous state
+// only, so a band may take all of the pass's draws before the next band starts. The fragment
+// path alternates buffers from draw to draw; every band takes the same number of draws, so all
+// end in the same buffer.
+int GpuRenderer::trace_rows(int rows) {
+  if (!pass_under_way()) return 0;
+  const int first = pass_.next_row;
+  const int last = std::min(height_, first + std::max(1, rows));
+  const bool compute = renderer_options_.backend == TraceBackend::compute;
+  collect_trace_timers(false);  // finished ones only, so the editor's list stays short
+  // GL_TIMESTAMP pairs, not GL_TIME_ELAPSED: Mesa 22's llvmpipe returns the time since boot for
+  // a context's first GL_TIME_ELAPSED query, and a pair never clashes with a caller's own query.
   GLuint timer[2] = {0, 0};
   glCreateQueries(GL_TIMESTAMP, 2, timer);
   glQueryCounter(timer[0], GL_TIMESTAMP);
-  for (int done = 0; done < samples;) {
-    const int n = std::min(samples - done, samples_per_draw_);
-    bind_trace_pass(n);
-    if (renderer_options_.backend == TraceBackend::compute) {
-      dispatch_trace(width_, height_, renderer_options_.work_group);
+  int source = current_;
+  int draws = 0;
+  for (int done = 0; done < pass_.samples; ++draws) {
+    const int n = std::min(pass_.samples - done, samples_per_draw_);
+    GlProgram& p = bind_trace_pass(*pass_.program, n, samples_ + done, passes_ + draws, source);
+    if (compute) {
+      p.set("u_tile_origin", glm::ivec2(0, first));
+      p.set("u_tile_end", glm::ivec2(width_, last));
+      dispatch_trace(width_, last - first, renderer_options_.work_group);
     } else {
+      const bool whole = first == 0 && last == height_;
+      if (!whole) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(0, first, width_, last - first);  // window row y is texel row y
+      }
       glDrawArrays(GL_TRIANGLES, 0, 3);
-      current_ = 1 - current_;
+      glDisable(GL_SCISSOR_TEST);
+      source = 1 - source;
     }
-    if (aov_pass_) trace_aov_pass(n);
-    samples_ += n;
-    ++passes_;
+    if (aov_pass_) trace_aov_pass(n, samples_ + done, first, last - first);
     done += n;
   }
   glQueryCounter(timer[1], GL_TIMESTAMP);
   trace_timers_.insert(trace_timers_.end(), timer, timer + 2);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  display_stale_ = true;
-  // After the pass, so that a driver without parallel compilation (Mesa's llvmpipe links in
-  // glLinkProgram) at least has this pass queued first.
-  if (last_pass_generic()) start_variant_if_missing();
+  pass_.next_row = last;
+  if (last == height_) {
+    current_ = source;
+    samples_ += pass_.samples;
+    passes_ += draws;
+    pass_ = {};
+    display_stale_ = true;
+    // After the pass, so that a driver without parallel compilation (Mesa's llvmpipe links in
+    // glLinkProgram) at least has this pass queued first.
+    if (last_pass_generic()) start_variant_if_missing();
+  }
+  return last - first;
 }
 
 // Adds the passes whose timestamps are in (all of them when `wait`) to trace_gpu_seconds_.
@@ -795,14 +834,14 @@ void GpuRenderer::set_aovs_enabled(bool enabled) {
   aov_pass_->resize(width_, height_);
 }
 
-// The same samples as the colour pass just drawn (samples_ not yet advanced), with the scene's
-// buffers and textures as bind_trace_pass left them.
-void GpuRenderer::trace_aov_pass(int samples) {
+// The same samples as the colour draw just made, over the same rows, with the scene's buffers
+// and textures as bind_trace_pass left them.
+void GpuRenderer::trace_aov_pass(int samples, int64_t samples_before, int first_row, int rows) {
   GlProgram& p = aov_pass_->program();
   apply_trace_uniforms(p, uniforms_);
-  p.set("u_samples_before", static_cast<unsigned>(samples_));
+  p.set("u_samples_before", static_cast<unsigned>(samples_before));
   p.set("u_samples_per_pass", samples);
-  aov_pass_->draw();
+  aov_pass_->draw(first_row, rows);
 }
 
 AovImages GpuRenderer::read_aovs() const {

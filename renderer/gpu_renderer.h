@@ -89,6 +89,27 @@ class GpuRenderer {
   // same image.
   void trace(int samples);
 
+  // A pass traced in parts, for a caller that bounds the GPU work of each call (the editor's
+  // export; docs/DESIGN.md §2, Tiled passes): begin_pass(samples) starts it, each trace_rows()
+  // traces the next band of image rows, and the call that traces the last row ends it. Every
+  // pixel gets the draws that trace(samples) gives it, from one program chosen at the start, so
+  // the image is the same. Everything else sees the pass as one unit, at its end: sample_count(),
+  // the display, the error estimate, adaptive sampling's pass index, the switch to a specialised
+  // program. The fragment path draws each band (glScissor) into the spare buffer and swaps at the
+  // end; the compute path writes each band in place, so until the pass ends its accumulation
+  // holds some rows with the pass's samples and some without: read the images (read_*,
+  // estimate_error, update_display) between passes only. A sync that resets the accumulation
+  // abandons the pass. Throws std::logic_error if a pass is already under way; does nothing
+  // for samples <= 0 or an empty film.
+  void begin_pass(int samples);
+  // Traces the next min(rows, pass_rows_left()) rows (at least one) of the pass under way, in
+  // one call's worth of draws (one per loop_budget.h's draw limit); returns the rows traced, 0
+  // with no pass under way. Never waits for the GPU.
+  int trace_rows(int rows);
+  bool pass_under_way() const { return pass_.samples > 0; }
+  int pass_samples() const { return pass_.samples; }  // per pixel, of the pass under way
+  int pass_rows_left() const { return pass_under_way() ? height_ - pass_.next_row : 0; }
+
   // For batch renders (`glint render`): compiles the program specialised to the synced scene
   // now, waiting for it, so that no pass is spent on the generic one, and draws one pixel with
   // the program that will run (generic with force_generic_shader or when the scene needs every
@@ -166,9 +187,10 @@ class GpuRenderer {
   GlProgram& choose_trace_program();
   void start_variant_if_missing();
   void collect_trace_timers(bool wait);
-  GlProgram& bind_trace_pass(int samples);
+  GlProgram& bind_trace_pass(GlProgram& p, int samples, int64_t samples_before, int64_t pass_index,
+                             int source);
   void warm_up_trace_program();
-  void trace_aov_pass(int samples);
+  void trace_aov_pass(int samples, int64_t samples_before, int first_row, int rows);
 
   // A specialised trace program, compiled or still compiling.
   struct Variant {
@@ -231,6 +253,13 @@ class GpuRenderer {
   GLuint environment_texture_ = 0;
 
   int current_ = 0;  // accumulation_[current_] holds the latest result (always 0 for compute)
+  // The pass begun by begin_pass (trace() is one of them, traced in one band).
+  struct Pass {
+    int samples = 0;    // per pixel; 0: none under way
+    int next_row = 0;   // rows [0, next_row) are traced
+    GlProgram* program = nullptr;  // the generic one or a variant's, never evicted meanwhile
+  };
+  Pass pass_;
   int width_ = 0;
   int height_ = 0;
   int64_t samples_ = 0;

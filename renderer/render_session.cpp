@@ -63,6 +63,7 @@ int64_t RenderSession::samples() const { return renderer_.sample_count(); }
 
 StopReason RenderSession::stop_reason() const {
   const RenderTarget& t = options_.target;
+  if (renderer_.pass_under_way()) return cancelled_ ? StopReason::cancelled : StopReason::none;
   if (error_target(t) && samples() >= kErrorTargetMinSamples && estimated_relmse_ >= 0 &&
       estimated_relmse_ <= t.error)
     return StopReason::error;
@@ -84,7 +85,11 @@ float RenderSession::progress() const {
   const RenderTarget& t = options_.target;
   double p = 0;
   if (time_target(t)) p = std::max(p, seconds_ / t.seconds);
-  if (sample_cap(t) > 0) p = std::max(p, double(samples()) / double(sample_cap(t)));
+  // With the rows of a pass under way that are traced.
+  double traced = double(samples());
+  if (renderer_.pass_under_way() && renderer_.height() > 0)
+    traced += pass_samples_ * double(renderer_.height() - renderer_.pass_rows_left()) / renderer_.height();
+  if (sample_cap(t) > 0) p = std::max(p, traced / double(sample_cap(t)));
   // relMSE falls as 1/n: the fraction of the samples needed so far.
   if (error_target(t) && estimated_relmse_ > 0) p = std::max(p, t.error / estimated_relmse_);
   return static_cast<float>(std::clamp(p, 0.0, 1.0));
@@ -95,7 +100,7 @@ void RenderSession::set_batch_policy(const BatchPolicy& policy) {
   batch_ = std::clamp(batch_, 1, std::max(1, policy.max_batch));
 }
 
-void RenderSession::trace_pass() {
+void RenderSession::begin_pass() {
   // The batch, capped at the sample target and the next checkpoint so that both are hit
   // exactly.
   int64_t k = batch_;
@@ -108,18 +113,45 @@ void RenderSession::trace_pass() {
     k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
   }
   if (checkpoint_ > 0) k = std::min(k, checkpoint_ - samples());
+  pass_samples_ = static_cast<int>(k);
+  pass_seconds_ = 0;
+  renderer_.begin_pass(pass_samples_);
+}
+
+double RenderSession::row_seconds(int64_t samples) const {
+  return pixel_sample_seconds_ * renderer_.width() * double(samples);
+}
+
+// The whole rest of the pass untiled; tiled, as many rows as fit in `seconds_left` (at least
+// one; one to measure the cost at first).
+void RenderSession::trace_band(double seconds_left) {
+  int rows = renderer_.pass_rows_left();
+  if (options_.tiled) {
+    const double row = row_seconds(pass_samples_);
+    const double fit = row > 0 ? std::floor(seconds_left / row) : 1.0;
+    rows = static_cast<int>(std::clamp(fit, 1.0, std::max(1.0, double(rows))));
+  }
   const auto start = Clock::now();
-  renderer_.trace(static_cast<int>(k));
-  glFinish();  // the pass's real time (and passes do not queue up)
+  const int traced = renderer_.trace_rows(rows);
+  glFinish();  // the band's real time (and bands do not queue up)
   const double t = seconds_since(start);
   seconds_ += t;
+  pass_seconds_ += t;
+  const int64_t pixel_samples = int64_t(traced) * renderer_.width() * pass_samples_;
+  step_pixel_samples_ += pixel_samples;
+  if (pixel_samples > 0) pixel_sample_seconds_ = t / double(pixel_samples);
+  if (!renderer_.pass_under_way()) end_pass();
+}
+
+void RenderSession::end_pass() {
+  const double t = pass_seconds_;
   // Outside the timed pass: the estimate is a small read-back (renderer/error_estimate.h).
   if (error_target(options_.target)) {
     const ErrorEstimate e = renderer_.estimate_error();
     estimated_relmse_ = e.known() ? e.relmse : -1;
   }
   const BatchPolicy& p = options_.batch;
-  if (k == batch_ && t < p.grow_below && batch_ < p.max_batch) batch_ = std::min(batch_ * 2, p.max_batch);
+  if (pass_samples_ == batch_ && t < p.grow_below && batch_ < p.max_batch) batch_ = std::min(batch_ * 2, p.max_batch);
   else if (t > p.shrink_above && batch_ > 1) batch_ /= 2;
   at_checkpoint_ = checkpoint_ > 0 && samples() == checkpoint_;
   if (at_checkpoint_) checkpoint_ = next_checkpoint(samples(), sample_cap(options_.target));
@@ -128,18 +160,26 @@ void RenderSession::trace_pass() {
 int64_t RenderSession::step(double slice_seconds) {
   const int64_t before = samples();
   at_checkpoint_ = false;
+  step_pixel_samples_ = 0;
   const auto start = Clock::now();
-  do {
-    if (done()) break;
-    trace_pass();
-  } while (!at_checkpoint_ && seconds_since(start) < slice_seconds);
+  while (!cancelled_) {
+    if (!renderer_.pass_under_way()) {
+      if (done()) break;
+      begin_pass();
+    }
+    trace_band(slice_seconds - seconds_since(start));
+    const double left = slice_seconds - seconds_since(start);
+    if (at_checkpoint_ || left <= 0) break;
+    // Tiled: no band that would not fit (the next pass's is at most the batch).
+    if (options_.tiled && left < row_seconds(renderer_.pass_under_way() ? pass_samples_ : batch_)) break;
+  }
   return samples() - before;
 }
 
 void RenderSession::run(const std::function<void(RenderSession&)>& after_pass) {
   while (!done()) {
     step(0);
-    if (after_pass) after_pass(*this);
+    if (after_pass && !renderer_.pass_under_way()) after_pass(*this);
   }
 }
 

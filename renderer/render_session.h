@@ -1,6 +1,7 @@
 // A progressive render to a target (docs/DESIGN.md §2): passes of a growing batch of samples
 // per pixel into a GpuRenderer until a sample count or a time budget is reached. `glint render`
-// runs one to the end, the editor's export steps one a UI slice at a time, the soak traces its
+// runs one to the end, the editor's export steps one a UI slice at a time (its passes traced in
+// bands of rows, so that a slice stays short even when a pass does not), the soak traces its
 // paired samples with one. Needs a current OpenGL 4.5 context; the renderer is synced first.
 #pragma once
 
@@ -30,9 +31,9 @@ struct RenderTarget {
 enum class StopReason { none, samples, time, error, cancelled };
 const char* stop_reason_text(StopReason reason);  // "sample count", "time", "error target", ...
 
-// How many samples a pass traces. A pass cannot be interrupted, so a batch starts small and
-// doubles while a full pass takes less than grow_below seconds (fewer passes, the same
-// samples), up to max_batch; it halves when a pass takes longer than shrink_above.
+// How many samples a pass traces. A batch starts small and doubles while a full pass takes
+// less than grow_below seconds (fewer passes, the same samples), up to max_batch; it halves
+// when a pass takes longer than shrink_above.
 struct BatchPolicy {
   int first_batch = 1;
   int max_batch = 1024;
@@ -46,6 +47,12 @@ struct RenderSessionOptions {
   // Every power of two (1, 2, 4, ...) and a sample target are hit exactly and reported by
   // at_checkpoint(), for a convergence log.
   bool checkpoints = false;
+  // Trace each pass in bands of rows (GpuRenderer::begin_pass, trace_rows), each sized from the
+  // measured time per pixel-sample to what is left of step()'s slice, so that a step takes
+  // about its slice even when a whole pass takes far longer (the editor's export). The image is
+  // the same as untiled for the same passes; the targets are checked between passes only. Off
+  // for `glint render`, which traces whole passes.
+  bool tiled = false;
 };
 
 class RenderSession {
@@ -58,9 +65,12 @@ class RenderSession {
   void cancel() { cancelled_ = true; }
 
   // Traces passes until `slice_seconds` of wall time have gone (at least one pass), the
-  // target is reached or a checkpoint is; waits for each pass (glFinish) to time it. Returns
-  // the samples per pixel traced; 0 once done().
+  // target is reached or a checkpoint is; waits for each pass (glFinish) to time it. Tiled: a
+  // band of rows at least instead of a pass, and no further band once the time left is less
+  // than a row takes. Returns the samples per pixel of the passes that ended; 0 once done().
   int64_t step(double slice_seconds = 0);
+  // Pixel-samples (rows x width x the pass's samples per pixel) the last step() traced.
+  int64_t step_pixel_samples() const { return step_pixel_samples_; }
 
   // Steps to the end, calling `after_pass` after every pass (outside the traced time: a
   // checkpoint's read-back does not count as rendering). `after_pass` may cancel.
@@ -85,7 +95,10 @@ class RenderSession {
 
  private:
   bool target_reached() const;
-  void trace_pass();
+  void begin_pass();
+  void trace_band(double seconds_left);
+  void end_pass();
+  double row_seconds(int64_t samples) const;  // a row's predicted time, 0 before any is measured
 
   GpuRenderer& renderer_;
   RenderSessionOptions options_;
@@ -95,6 +108,10 @@ class RenderSession {
   bool cancelled_ = false;
   double seconds_ = 0;
   double estimated_relmse_ = -1;
+  int pass_samples_ = 0;      // per pixel, of the pass under way or the last one
+  double pass_seconds_ = 0;   // of the bands of the pass under way
+  double pixel_sample_seconds_ = 0;  // the last band's time per pixel-sample, 0 before one
+  int64_t step_pixel_samples_ = 0;
 };
 
 }  // namespace glint

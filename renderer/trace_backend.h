@@ -48,7 +48,7 @@ struct TraceTargets {
 // shaders/trace.comp declares them.
 void bind_trace_images(const TraceTargets& targets);
 // One pass over width x height pixels: ceil(width / x) x ceil(height / y) groups (the shader
-// skips the overhang), then the barrier that makes its image stores visible to the next pass's
+// skips the overhang; its u_tile_origin and u_tile_end place them in the image), then the barrier that makes its image stores visible to the next pass's
 // image loads, the tonemap pass's texture fetches and read-back or clears of the textures.
 void dispatch_trace(int width, int height, WorkGroup group);
 // For a job on the program worker (renderer/program_worker.h): binds four 1x1 images of the

@@ -18,11 +18,16 @@ layout(binding = 0, rgba32f) uniform image2D u_accumulation;
 layout(binding = 1, rgba32f) uniform image2D u_compensation;
 layout(binding = 2, rgba32f) uniform image2D u_variance;
 layout(binding = 3, rgba32f) uniform image2D u_variance_compensation;
+// The dispatch covers pixels [u_tile_origin, u_tile_end): the whole image, or one band of rows
+// of a pass traced in parts (GpuRenderer::trace_rows).
+uniform ivec2 u_tile_origin;
+uniform ivec2 u_tile_end;
 
 void main() {
   // Row y of the image is row y of the texture (top first), as in trace.frag.
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (pixel.x >= u_resolution.x || pixel.y >= u_resolution.y) return;  // the last groups' overhang
+  ivec2 pixel = u_tile_origin + ivec2(gl_GlobalInvocationID.xy);
+  // The last groups' overhang: past the tile (whose next rows the next dispatch traces) or the image.
+  if (any(greaterThanEqual(pixel, min(u_tile_end, u_resolution)))) return;
   bool before = u_samples_before > 0u;
   vec4 accumulation = before ? imageLoad(u_accumulation, pixel) : vec4(0.0);
   vec4 compensation = before ? imageLoad(u_compensation, pixel) : vec4(0.0);
