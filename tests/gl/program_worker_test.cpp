@@ -173,17 +173,24 @@ std::string nonce_define() {
 // What the editor's viewport does each frame (one small pass, then the display), timed frame by
 // frame across a structural edit, with programs new to the driver: no frame waits for a new
 // variant's compile. The bound is half of a cold first draw of such a variant measured here and
-// now, so that it scales with the machine's load (a frame of a few ms can be descheduled for
-// 0.1-1 s on this shared machine; a frame that waited for the compile would take all of it).
-TEST(GlProgramWorker, NoFrameWaitsForAStructuralEditsProgram) {
-  test::ensure_gl_context();
-  SKIP_UNLESS_LLVMPIPE_WITH_CACHE();
+// now, so that it scales with the machine's load. A frame of a few ms can still be descheduled
+// for 0.1-1.5 s on this shared machine (seen in CI with a build running beside it, before the
+// edit as much as after), so a trial that exceeds the bound is repeated with new programs, up
+// to 3 trials: a frame that waits for the compile does so in every trial.
+struct StructuralEditTrial {
+  double cold = 0, before_edit = 0, after_edit = 0;
+  bool passed() const { return before_edit < cold / 2 && after_edit < cold / 2; }
+};
+
+StructuralEditTrial time_a_structural_edit() {
   WorkerFixture f;
   Scene scene = load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint");
-  const double cold = cold_first_draw_seconds(shader_defines(scene_features(scene)) + nonce_define());
+  const std::string nonce = nonce_define();
+  StructuralEditTrial trial;
+  trial.cold = cold_first_draw_seconds(shader_defines(scene_features(scene)) + nonce_define());
   GpuRendererOptions options;
   options.worker = f.worker;
-  options.extra_defines = nonce_define();
+  options.extra_defines = nonce;
   GpuRenderer r(options);
   // Runs frames until the specialised program has drawn 3 of them; the slowest frame's seconds.
   auto slowest_frame = [&r] {
@@ -204,21 +211,34 @@ TEST(GlProgramWorker, NoFrameWaitsForAStructuralEditsProgram) {
   r.sync(scene, 16, 16);
   r.trace(1);  // the generic program's own first-draw compile, before the timing
   glFinish();
-  const double before_edit = slowest_frame();
+  trial.before_edit = slowest_frame();
   // Structural edit: a texture, so the new variant has texture fetches and a bound array.
   scene.textures.push_back({.name = "wood", .path = "assets/wood_color.png"});
   scene.materials[0].color_texture = "wood";
-  ASSERT_TRUE(r.sync(scene, 16, 16).accumulation_reset);
-  const double after_edit = slowest_frame();
+  EXPECT_TRUE(r.sync(scene, 16, 16).accumulation_reset);
+  trial.after_edit = slowest_frame();
   std::printf("cold first draw %.4f s; slowest frame %.4f s before the edit, %.4f s after\n",
-              cold, before_edit, after_edit);
+              trial.cold, trial.before_edit, trial.after_edit);
+  return trial;
+}
+
+TEST(GlProgramWorker, NoFrameWaitsForAStructuralEditsProgram) {
+  test::ensure_gl_context();
+  SKIP_UNLESS_LLVMPIPE_WITH_CACHE();
+  StructuralEditTrial trial;
+  int trials = 0;
+  do {
+    trial = time_a_structural_edit();
+    ++trials;
+  } while (!trial.passed() && trials < 3);
   char text[32];
-  std::snprintf(text, sizeof text, "%.4f", cold);
+  std::snprintf(text, sizeof text, "%.4f", trial.cold);
   RecordProperty("cold_first_draw_seconds", text);
-  std::snprintf(text, sizeof text, "%.4f", after_edit);
+  std::snprintf(text, sizeof text, "%.4f", trial.after_edit);
   RecordProperty("slowest_frame_after_edit_seconds", text);
-  EXPECT_LT(before_edit, cold / 2);
-  EXPECT_LT(after_edit, cold / 2);
+  RecordProperty("trials", trials);
+  EXPECT_LT(trial.before_edit, trial.cold / 2) << "in each of " << trials << " trials";
+  EXPECT_LT(trial.after_edit, trial.cold / 2) << "in each of " << trials << " trials";
 }
 
 // The point of the worker on llvmpipe: the first draw with a program costs the JIT compile
