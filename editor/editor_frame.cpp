@@ -13,7 +13,7 @@ void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport)
   draw_editor_ui(doc, state);
   state.viewport.frame = viewport.render(doc.scene, viewport_request(state));
   const auto export_start = std::chrono::steady_clock::now();
-  step_export(state, viewport.trace_seconds());
+  step_export(state, viewport.export_slice_seconds());
   viewport.add_trace_seconds(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count());
   doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting);

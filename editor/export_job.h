@@ -5,6 +5,7 @@
 // No ImGui here (ui_export.cpp is its dialog); needs a current OpenGL 4.5 context.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <future>
@@ -62,7 +63,12 @@ class ExportJob {
   State state() const { return state_; }
   float progress() const;  // 0..1
   int64_t samples() const;
-  double elapsed_seconds() const { return traced_seconds_; }
+  double elapsed_seconds() const { return traced_seconds_; }  // of tracing (what --time counts)
+  // Wall-clock seconds since the job started: what the user waits, the UI's frames included
+  // (the dialog's time and its time left use it).
+  double wall_seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  }
   const std::string& error() const { return error_; }
   // When done: how the output was denoised (or why it was not), "" without denoising.
   const std::string& denoise_note() const { return denoise_note_; }
@@ -79,6 +85,7 @@ class ExportJob {
   State state_ = State::running;
   std::string error_;
   double traced_seconds_ = 0;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
   std::future<std::string> denoising_;  // the worker's note, once the file is written
   std::string denoise_note_;
 };

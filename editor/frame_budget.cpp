@@ -17,6 +17,11 @@ void FrameBudget::record_frame(double frame_seconds, double trace_seconds) {
   config_.trace_seconds = std::max(config_.min_trace_seconds, config_.frame_seconds - overhead_);
 }
 
+double FrameBudget::export_slice_seconds() const {
+  const double ui = overhead_ > 0 ? overhead_ : 0.0;
+  return std::min(kMaxExportSliceSeconds, std::max(config_.trace_seconds, 2 * ui));
+}
+
 int FrameBudget::samples(int64_t pixels) const {
   if (cost_ <= 0 || pixels <= 0) return 1;
   double k = config_.trace_seconds / (cost_ * static_cast<double>(pixels));

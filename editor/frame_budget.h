@@ -45,6 +45,15 @@ class FrameBudget {
   // frame target minus the (smoothed) rest, so slow UI drawing leaves less time to trace.
   void record_frame(double frame_seconds, double trace_seconds);
 
+  // The slice a running export traces per UI frame (the viewport pauses meanwhile): the trace
+  // budget, but at least twice the UI's own (smoothed) time per frame and at most
+  // kMaxExportSliceSeconds. Where drawing the UI is slow (llvmpipe: ~30 ms a frame) the 3 ms
+  // floor of the trace budget would leave the export a tenth of the machine; this leaves it two
+  // thirds, the UI still answering at about 10 frames a second. Where the UI is quick (a GPU)
+  // the trace budget is the larger and the frame target holds.
+  static constexpr double kMaxExportSliceSeconds = 0.1;
+  double export_slice_seconds() const;
+
   // Seconds per pixel-sample as currently estimated (0 before the first measurement).
   double cost() const { return cost_; }
   // Estimated seconds of one sample per pixel over `pixels` (0 before the first measurement).

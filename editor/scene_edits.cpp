@@ -397,6 +397,10 @@ QuadPlacement quad_placement(const Quad& quad) {
     a = std::atan2(y.z, y.y);  // R21, R11
   }
   out.rotation_deg = glm::degrees(glm::vec3(a, b, c));
+  // Angles within rounding of zero (atan2(-0, x) is -0, and an axis-aligned quad's frame is
+  // off by an ulp) read as +0, so the panel never shows "-0.0 deg".
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(out.rotation_deg[k]) < 1e-3f) out.rotation_deg[k] = 0.0f;
   return out;
 }
 

@@ -133,10 +133,10 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     ExportJob& job = *state.export_ui.job;
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
-                  static_cast<long long>(job.samples()), job.elapsed_seconds());
+                  static_cast<long long>(job.samples()), job.wall_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
     tip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
-    ImGui::TextUnformatted(export_eta(job.progress(), job.elapsed_seconds()).c_str());
+    ImGui::TextUnformatted(export_eta(job.progress(), job.wall_seconds()).c_str());
     if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";

@@ -34,6 +34,7 @@ class ViewportRenderer {
 
   // Seconds of tracing one UI frame affords (what a running export gets instead).
   double trace_seconds() const { return budget_.config().trace_seconds; }
+  double export_slice_seconds() const { return budget_.export_slice_seconds(); }
   // Seconds another renderer traced in this frame (a running export's slice): the frame budget
   // counts them as tracing, not as the UI's own time, which would shrink the next slices.
   void add_trace_seconds(double seconds) { last_trace_seconds_ += seconds; }

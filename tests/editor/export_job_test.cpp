@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <thread>
 #include <vector>
 
 #include "editor/export_job.h"
@@ -102,6 +103,24 @@ TEST_F(ExportJobTest, TimeBudgetStopsAfterItsTime) {
   EXPECT_GE(job.elapsed_seconds(), 0.2);
   EXPECT_GT(job.samples(), 0);
   EXPECT_TRUE(fs::exists(s.output));
+}
+
+// The dialog's time counts the wall clock, the UI's frames between slices included, not only
+// the tracing (the time left would otherwise be too short by the UI's share of each frame).
+TEST_F(ExportJobTest, WallSecondsCountTheTimeBetweenSlices) {
+  ExportSettings s;
+  s.width = 16;
+  s.height = 16;
+  s.samples = 1 << 20;
+  s.output = dir_ / "wall.png";
+  ExportJob job(scene_, s);
+  for (int i = 0; i < 5; ++i) {
+    job.step(0.001);
+    std::this_thread::sleep_for(std::chrono::milliseconds(40));  // a slow UI frame
+  }
+  EXPECT_GE(job.wall_seconds(), 0.2);
+  EXPECT_GE(job.wall_seconds(), job.elapsed_seconds() + 0.19);
+  job.cancel();
 }
 
 // A pass that does not fit the slice is traced in bands over several steps. With a slice

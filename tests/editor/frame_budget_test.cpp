@@ -86,6 +86,22 @@ TEST(FrameBudget, UiOverheadShrinksTheTraceBudget) {
   EXPECT_DOUBLE_EQ(b.config().trace_seconds, b.config().min_trace_seconds);
 }
 
+// A running export's slice: the trace budget where the UI is quick, twice the UI's time where
+// it is slow (so the export gets two thirds of each frame), never more than 0.1 s.
+TEST(FrameBudget, ExportSliceLeavesTheExportTwoThirdsOfASlowFrame) {
+  FrameBudget quick;
+  for (int i = 0; i < 200; ++i) quick.record_frame(0.012, 0.010);  // 2 ms of UI per frame
+  EXPECT_NEAR(quick.export_slice_seconds(), quick.config().trace_seconds, 1e-12);
+  EXPECT_NEAR(quick.export_slice_seconds(), 0.023, 1e-3);
+  FrameBudget slow;
+  for (int i = 0; i < 200; ++i) slow.record_frame(0.033, 0.003);  // 30 ms of UI per frame
+  EXPECT_NEAR(slow.export_slice_seconds(), 0.060, 1e-3);
+  FrameBudget very_slow;
+  for (int i = 0; i < 200; ++i) very_slow.record_frame(0.5, 0.0);
+  EXPECT_DOUBLE_EQ(very_slow.export_slice_seconds(), FrameBudget::kMaxExportSliceSeconds);
+  EXPECT_DOUBLE_EQ(FrameBudget().export_slice_seconds(), FrameBudget().config().trace_seconds);
+}
+
 TEST(FrameBudget, IgnoresMeaninglessMeasurements) {
   FrameBudget b;
   b.record(0, 100, 1.0, 100);

@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "editor_test_util.h"
+#include "renderer/project_file.h"
 
 namespace glint {
 namespace {
@@ -280,6 +285,24 @@ TEST(SceneEdits, QuadPlacementOfAxisAlignedQuad) {
   set_quad_placement(rebuilt, quad_placement(s.quads[0]));
   for (int k = 0; k < 4; ++k)
     EXPECT_NEAR(glm::length(rebuilt.corners[k] - s.quads[0].corners[k]), 0, 1e-4) << k;
+}
+
+// The default project's cutout panel (turned about Y only) reads 0 deg about X and Z, not the
+// "-0.0" that atan2 of a negative zero gives, and its Y angle is kept.
+TEST(SceneEdits, QuadPlacementReadsNoNegativeZeroAngles) {
+  const Scene s = load_project(GLINT_SOURCE_DIR "/projects/default.glint");
+  const auto panel = std::find_if(s.quads.begin(), s.quads.end(),
+                                  [](const Quad& q) { return q.name == "cutout_panel"; });
+  ASSERT_NE(panel, s.quads.end());
+  const QuadPlacement p = quad_placement(*panel);
+  EXPECT_EQ(p.rotation_deg.x, 0.0f);
+  EXPECT_EQ(p.rotation_deg.z, 0.0f);
+  EXPECT_FALSE(std::signbit(p.rotation_deg.x));
+  EXPECT_FALSE(std::signbit(p.rotation_deg.z));
+  EXPECT_GT(std::abs(p.rotation_deg.y), 1.0f);
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f deg", p.rotation_deg.z);
+  EXPECT_STREQ(text, "0.0 deg");
 }
 
 TEST(SceneEdits, QuadPlacementRejectsZeroSize) {
