@@ -11,6 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+source scripts/compiler_cache.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 

@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake ninja-build pkg-config g++ python3
+  ccache   # scripts/compiler_cache.sh: rebuilds and the sanitizer and fuzz builds reuse compiles
   libglfw3-dev libglm-dev libstb-dev libepoxy-dev
   nlohmann-json3-dev libtinyexr-dev libgtest-dev
   libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libegl1

@@ -33,6 +33,7 @@ stage "tests"
 # (CMakePresets.json filters). The tests that make a GL context
 # run with leak detection off (tests/sanitizers/lsan.supp says why).
 stage "sanitizer build"
+source scripts/compiler_cache.sh
 cmake --preset asan >/dev/null
 cmake --build --preset asan
 stage "sanitizer tests"
