@@ -32,8 +32,8 @@ class ViewportRenderer {
   // default framebuffer bound.
   ViewportFrame render(const Scene& scene, const ViewportRequest& request);
 
-  // Seconds of tracing one UI frame affords (what a running export gets instead).
-  double trace_seconds() const { return budget_.config().trace_seconds; }
+  // Seconds a running export traces per UI frame, while the viewport pauses
+  // (FrameBudget::export_slice_seconds).
   double export_slice_seconds() const { return budget_.export_slice_seconds(); }
   // Seconds another renderer traced in this frame (a running export's slice): the frame budget
   // counts them as tracing, not as the UI's own time, which would shrink the next slices.

@@ -27,9 +27,9 @@ stage "tests"
 
 # Sanitizers (README, Tests): every unit, editor and GL test but the real window
 # (editor.window_smoke and editor.recovery_start: they need the glint executable, not built here) and the scalability test
-# unit.MalformedInput.AMillionSpheresLoad (minutes under ASan), the slower refractive chi-square cases
-# (pure arithmetic), the soak (gl.Soak.*: it bounds
-# heap and RSS, which ASan's allocator changes) and the frame-time test editor.BvhDrag.*
+# unit.MalformedInput.AMillionSpheresLoad (minutes under ASan), the slower refractive chi-square
+# cases (pure arithmetic), the soak (gl.Soak.*: it bounds heap and RSS, which ASan's allocator
+# changes) and the frame-time test editor.BvhDrag.*
 # (CMakePresets.json filters). The tests that make a GL context
 # run with leak detection off (tests/sanitizers/lsan.supp says why).
 stage "sanitizer build"

@@ -148,9 +148,7 @@ TYPED_TEST(ShaderBsdf, SampledDirectionsFollowThePdf) {
           continue;
         }
         dvec3 wi = glm::normalize(to_d(s.wi));
-        int ci = std::clamp(int((frame.cos_theta(wi) + 1.0) * 0.5 * n_cos), 0, n_cos - 1);
-        int pj = std::clamp(int(frame.phi(wi) / (2 * kPi) * n_phi), 0, n_phi - 1);
-        observed[ci * n_phi + pj] += 1;
+        observed[sphere_bin(frame, wi, n_cos, n_phi)] += 1;
       }
       double total = 0;
       for (std::size_t k = 0; k < probs.size(); ++k) {

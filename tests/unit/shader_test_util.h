@@ -177,6 +177,15 @@ struct Frame {
   }
 };
 
+// The bin of direction w in a grid of n_cos equal bins of cos(theta) over [-1, 1] (both
+// hemispheres) times n_phi equal bins of azimuth, as index cos_bin * n_phi + phi_bin: equal
+// solid angles, so each bin's probability is the pdf's integral over it.
+inline int sphere_bin(const Frame& frame, glm::dvec3 w, int n_cos, int n_phi) {
+  int ci = std::clamp(int((frame.cos_theta(w) + 1.0) * 0.5 * n_cos), 0, n_cos - 1);
+  int pj = std::clamp(int(frame.phi(w) / (2 * std::numbers::pi) * n_phi), 0, n_phi - 1);
+  return ci * n_phi + pj;
+}
+
 // Regularised upper incomplete gamma function Q(a, x) (series for x < a + 1, Lentz's continued
 // fraction otherwise; Numerical Recipes 6.2). The p-value of a chi-square statistic x with k
 // degrees of freedom is Q(k/2, x/2).
