@@ -343,6 +343,39 @@ int pick_light(float u) {
   return lo;
 }
 
+// The material of primitive `ref` of a closest hit: x its index, y its light's (-1: none).
+ivec4 primitive_material(int ref) {
+#if !defined(GLINT_NO_QUADS) && !defined(GLINT_NO_SPHERES)
+  return ref >= u_sphere_count ? quads[ref - u_sphere_count].material : spheres[ref].material;
+#elif !defined(GLINT_NO_QUADS)
+  return quads[ref - u_sphere_count].material;
+#else
+  return spheres[ref].material;
+#endif
+}
+
+#if defined(GLINT_NO_COVERAGE) && defined(GLINT_NO_TRANSPARENT)
+// Radiance reaching `origin` along wi from light `target` (-1: the environment) in a scene
+// where every surface blocks light (refractive ones too): the first surface met decides. The
+// general loop below gives the same value here, but llvmpipe runs every branch of it whether a
+// pixel takes it or not. Without textures only which primitive was hit matters, not where, so
+// the hit record (point, normal, uv) is not built either.
+vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
+  Ray ray = Ray(origin, wi);
+#if defined(GLINT_NO_TEXTURES)
+  PrimitiveHit closest = closest_primitive(ray);
+  if (closest.ref < 0) return target < 0 ? environment(wi) : vec3(0.0);
+  ivec4 material = primitive_material(closest.ref);
+  if (target < 0 || material.y != target) return vec3(0.0);
+  return materials[material.x].emission.rgb;
+#else
+  SceneHit hit = intersect_scene(ray);
+  if (hit.material < 0) return target < 0 ? environment(wi) : vec3(0.0);
+  if (target < 0 || hit.light != target) return vec3(0.0);
+  return material_emission(materials[hit.material], hit.uv);
+#endif
+}
+#else
 // Radiance reaching `origin` along wi from light `target` (-1: the environment), through
 // cut-outs and smooth thin glass; 0 when anything else blocks it.
 vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
@@ -366,6 +399,7 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
   }
   return vec3(0.0);
 }
+#endif
 
 // A light sample seen from `origin`: the point the shadow ray actually starts from.
 LightSample sample_light(int i, vec3 origin, vec2 u) {

@@ -76,7 +76,8 @@ TEST(GlShaderVariants, EveryProjectRendersTheSameSpecialisedAndGeneric) {
 }
 
 // Scenes that no example project is: each leaves out code the projects keep (next-event
-// estimation entirely, the environment branch of it, one shape kind).
+// estimation entirely, the environment branch of it, one shape kind), or keeps code they leave
+// out (the shadow ray of an opaque scene with textured emitters).
 TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
   test::ensure_gl_context();
   struct Case {
@@ -110,6 +111,16 @@ TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
     s.spheres[0].material = "glass";
     s.spheres[1].material = "rough_glass";
     cases.push_back({"refractive", "GLINT_NO_GLOSSY", s});
+  }
+  {
+    Scene s = base;  // opaque but textured: shadow rays find the light's textured emission
+    s.textures.push_back({.name = "wood", .path = "assets/wood_color.png"});
+    s.materials[0].color_texture = "wood";
+    for (Material& m : s.materials) {
+      if (m.emission != glm::vec3(0)) m.emission_texture = "wood";
+    }
+    EXPECT_TRUE(scene_features(s).has_textures);
+    cases.push_back({"textured, opaque", "GLINT_NO_COVERAGE", s});
   }
   for (const Case& c : cases) for (SamplerKind sampler : {SamplerKind::pcg, SamplerKind::sobol}) {
     SCOPED_TRACE(std::string(c.name) + (sampler == SamplerKind::sobol ? ", sobol" : ", pcg"));
