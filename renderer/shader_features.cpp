@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "renderer/image.h"
+#include "renderer/quad_shape.h"
 
 namespace glint {
 namespace {
@@ -56,6 +57,8 @@ ShaderFeatures scene_features(const Scene& scene) {
   f.env_textured = !scene.environment.texture.empty();
   f.has_spheres = !scene.spheres.empty();
   f.has_quads = !scene.quads.empty();
+  f.has_general_quads = std::any_of(scene.quads.begin(), scene.quads.end(),
+                                    [](const Quad& q) { return !quad_is_planar_convex(q.corners); });
   f.thin_lens = scene.camera.aperture_radius > 0;
   return f;
 }
@@ -67,6 +70,7 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.env_textured, needed.env_textured) && ok(program.thin_lens, needed.thin_lens) &&
          ok(program.has_coverage, needed.has_coverage) &&
          ok(program.has_spheres, needed.has_spheres) && ok(program.has_quads, needed.has_quads) &&
+         ok(program.has_general_quads, needed.has_general_quads) &&
          ok(program.loop_traversal, needed.loop_traversal) &&
          ok(program.bvh_traversal, needed.bvh_traversal) &&
          ok(program.pcg_sampler, needed.pcg_sampler) && ok(program.sobol_sampler, needed.sobol_sampler) &&
@@ -92,6 +96,7 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.bvh_traversal, "GLINT_NO_BVH");
   define(f.has_spheres, "GLINT_NO_SPHERES");
   define(f.has_quads, "GLINT_NO_QUADS");
+  define(f.has_general_quads, "GLINT_NO_GENERAL_QUADS");
   define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
   define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
   return out;

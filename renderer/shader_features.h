@@ -25,6 +25,9 @@ struct ShaderFeatures {
   bool has_coverage = true;   // a used material has opacity < 1 or a colour texture with alpha
   bool has_spheres = true;    // the scene has a sphere
   bool has_quads = true;      // the scene has a quad
+  // A quad that is not planar and convex (renderer/quad_shape.h): without one, quads are tested
+  // by the cheaper intersect_planar_quad instead of as two triangles.
+  bool has_general_quads = true;
   uint32_t material_types = 0x1F;  // bit (1 << int(MaterialType)) per type used by a primitive
   // Closest hits by the loop over all shapes, by the BVH (shaders/lib/bvh.glsl). The scene alone
   // does not decide (the render options may force one): scene_features keeps both, and the

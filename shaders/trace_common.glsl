@@ -216,9 +216,19 @@ float scene_sphere_hit(int i, Ray ray, float tmax) {
   return intersect_sphere(ray, s.xyz, s.w, 0.0, tmax);
 }
 float scene_quad_hit(int i, Ray ray, float tmax) {
+#if defined(GLINT_NO_GENERAL_QUADS)
+  // Every quad is planar and convex: intersect_planar_quad, with the corners read only for a t
+  // in range (lib/intersect.glsl says why).
+  vec3 p0 = quads[i].p0.xyz;
+  float t = planar_quad_plane_t(ray, p0, quads[i].normal.xyz, 0.0, tmax);
+  if (t == NO_HIT) return NO_HIT;
+  if (!planar_quad_inside_edges(ray, p0, quads[i].p1.xyz, quads[i].p2.xyz, quads[i].p3.xyz)) return NO_HIT;
+  return t;
+#else
   GpuQuad q = quads[i];
   return intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
                         q.uv23.xy, q.uv23.zw, 0.0, tmax).t;
+#endif
 }
 BvhNode bvh_node(int i) { return bvh_nodes[i]; }
 int bvh_primitive(int i) { return bvh_primitives[i]; }

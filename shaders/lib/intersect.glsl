@@ -119,6 +119,43 @@ QuadHit intersect_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 uv0, ve
   return hit;
 }
 
+// A planar convex quad, the cheaper test for scenes whose quads all are (renderer/quad_shape.h
+// decides, within a rounding small against the ray offset of common.glsl), in two steps: the
+// plane's t (`normal`: any non-zero normal of the plane; NO_HIT outside (tmin, tmax), also for
+// a ray parallel to it), then whether the ray passes inside the four boundary edges. The edge
+// volumes are the same edge_volume calls (same endpoints, same order) as intersect_quad's, so
+// two quads sharing an edge still leave no crack, and a ray meets a convex quad iff the four
+// have one sign (Woop et al. 2013; inclusive edges). The trace shader reads the corners for the
+// second step only after the first has found t in range: on llvmpipe the saving is those
+// storage-buffer reads, skipped when no pixel of a SIMD group needs them (bench/THROUGHPUT.md).
+float planar_quad_plane_t(Ray ray, vec3 p0, vec3 normal, float tmin, float tmax) {
+  float t = dot(p0 - ray.origin, normal) / dot(ray.direction, normal);
+  return t > tmin && t < tmax ? t : NO_HIT;
+}
+
+bool planar_quad_inside_edges(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
+  vec3 d = ray.direction;
+  vec3 a0 = p0 - ray.origin;
+  vec3 a1 = p1 - ray.origin;
+  vec3 a2 = p2 - ray.origin;
+  vec3 a3 = p3 - ray.origin;
+  float w01 = edge_volume(d, a0, a1);
+  float w13 = edge_volume(d, a1, a3);
+  float w32 = edge_volume(d, a3, a2);
+  float w20 = edge_volume(d, a2, a0);
+  bool negative = w01 < 0.0f || w13 < 0.0f || w32 < 0.0f || w20 < 0.0f;
+  bool positive = w01 > 0.0f || w13 > 0.0f || w32 > 0.0f || w20 > 0.0f;
+  return !(negative && positive);
+}
+
+// Both steps: the nearest t in (tmin, tmax) where the ray meets the planar convex quad, or NO_HIT.
+float intersect_planar_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec3 normal, float tmin,
+                            float tmax) {
+  float t = planar_quad_plane_t(ray, p0, normal, tmin, tmax);
+  if (t == NO_HIT || !planar_quad_inside_edges(ray, p0, p1, p2, p3)) return NO_HIT;
+  return t;
+}
+
 vec3 quad_normal(vec3 p0, vec3 p1, vec3 p2) { return normalize(cross(p1 - p0, p2 - p0)); }
 
 #endif

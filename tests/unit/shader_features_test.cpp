@@ -2,7 +2,11 @@
 // trace shader gets (renderer/shader_features.h).
 #include <gtest/gtest.h>
 
+#include <array>
+#include <random>
+
 #include "renderer/project_file.h"
+#include "renderer/quad_shape.h"
 #include "renderer/shader_features.h"
 
 namespace glint {
@@ -36,7 +40,8 @@ TEST(ShaderFeatures, EmptySceneNeedsNothing) {
             "#define GLINT_NO_EMITTERS\n#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n"
             "#define GLINT_NO_THIN_LENS\n#define GLINT_NO_COVERAGE\n#define GLINT_NO_MATTE\n"
             "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n"
-            "#define GLINT_NO_REFRACTIVE\n#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n");
+            "#define GLINT_NO_REFRACTIVE\n#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n"
+            "#define GLINT_NO_GENERAL_QUADS\n");
 }
 
 TEST(ShaderFeatures, CornellBox) {
@@ -51,7 +56,8 @@ TEST(ShaderFeatures, CornellBox) {
                                   bit(MaterialType::glossy));
   EXPECT_EQ(shader_defines(f),
             "#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n#define GLINT_NO_THIN_LENS\n"
-            "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n#define GLINT_NO_REFRACTIVE\n");
+            "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n#define GLINT_NO_REFRACTIVE\n"
+            "#define GLINT_NO_GENERAL_QUADS\n");
 }
 
 TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
@@ -60,6 +66,7 @@ TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
   ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/default.glint"));
   ShaderFeatures expected = generic_features();
   expected.material_types &= ~bit(MaterialType::refractive);
+  expected.has_general_quads = false;  // its quads are rectangles
   EXPECT_EQ(f, expected);
 }
 
@@ -144,6 +151,53 @@ TEST(ShaderFeatures, ShapeKinds) {
   EXPECT_FALSE(covers(spheres_only, quads_only));
   EXPECT_FALSE(covers(quads_only, spheres_only));
   EXPECT_TRUE(covers(generic_features(), quads_only));
+}
+
+// Which quads the cheaper planar test may take (renderer/quad_shape.h), and the feature.
+TEST(ShaderFeatures, PlanarConvexQuads) {
+  using C = std::array<glm::vec3, 4>;
+  const C rectangle = {glm::vec3(0, 0, 0), glm::vec3(0, 0, 2), glm::vec3(3, 0, 0), glm::vec3(3, 0, 2)};
+  EXPECT_TRUE(quad_is_planar_convex(rectangle));
+  C trapezoid = rectangle;
+  trapezoid[3] = glm::vec3(2, 0, 2);
+  EXPECT_TRUE(quad_is_planar_convex(trapezoid));
+  C folded = rectangle;
+  folded[3].y = 1e-4f;  // 3e-5 of the extent (sqrt(13)) off the plane
+  EXPECT_FALSE(quad_is_planar_convex(folded));
+  folded[3].y = 1e-7f;  // 3e-8: within 2^-23 (1.2e-7) of the extent
+  EXPECT_TRUE(quad_is_planar_convex(folded));
+  C dart = rectangle;  // p3 pulled inside: the boundary turns the other way there
+  dart[3] = glm::vec3(1, 0, 1);
+  EXPECT_FALSE(quad_is_planar_convex(dart));
+  const C bow_tie = {rectangle[0], rectangle[1], rectangle[3], rectangle[2]};  // p2 and p3 swapped
+  EXPECT_FALSE(quad_is_planar_convex(bow_tie));
+  const C flat = {glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(2, 0, 0), glm::vec3(3, 0, 0)};
+  EXPECT_FALSE(quad_is_planar_convex(flat));
+  // Parallelograms turned at random, corners rounded to float near the origin, as the editor
+  // makes them: nearly all stay within the tolerance.
+  std::mt19937 rng(7);
+  std::normal_distribution<double> g;
+  auto unit = [&] { glm::dvec3 v(g(rng), g(rng), g(rng)); return glm::normalize(v); };
+  int planar = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const glm::dvec3 p0 = 2.0 * unit(), e1 = unit(), e2 = glm::normalize(glm::cross(e1, unit()));
+    planar += quad_is_planar_convex({glm::vec3(p0), glm::vec3(p0 + e1), glm::vec3(p0 + e2), glm::vec3(p0 + e1 + e2)});
+  }
+  EXPECT_GE(planar, 900);
+
+  Scene s;
+  s.materials.push_back(Material{});
+  s.quads.push_back({.corners = rectangle});
+  EXPECT_FALSE(scene_features(s).has_general_quads);
+  s.quads.push_back({.corners = dart});
+  const ShaderFeatures general = scene_features(s);
+  EXPECT_TRUE(general.has_general_quads);
+  EXPECT_EQ(shader_defines(general).find("GLINT_NO_GENERAL_QUADS"), std::string::npos);
+  s.quads.pop_back();
+  const ShaderFeatures planar_only = scene_features(s);
+  EXPECT_NE(shader_defines(planar_only).find("#define GLINT_NO_GENERAL_QUADS\n"), std::string::npos);
+  EXPECT_TRUE(covers(general, planar_only));
+  EXPECT_FALSE(covers(planar_only, general));
 }
 
 TEST(ShaderFeatures, SamplerDefinesAndCover) {

@@ -364,6 +364,71 @@ TYPED_TEST(ShaderIntersect, FoldedQuadReturnsTheNearerTriangle) {
   EXPECT_NEAR(double(down.t), 6.0 / 17.0, 1e-5);
 }
 
+// The planar test (intersect_planar_quad, for scenes whose quads all are planar and convex)
+// against the two-triangle one on planar convex quads: parallelograms and general convex
+// quads (p3 moved within the plane, keeping every corner convex), 0.1 to 100 units, rays from
+// either side at least 3 degrees off the plane through points around the quad. Both must agree
+// on hit or miss wherever the point is more than 1e-4 of the size from the boundary (at the
+// boundary either answer is right), and on t to 8 epsilons of the distance from the ray's
+// origin to p0 and the quad's size, over the cosine of the incidence (the rounding of p0 - o
+// and of the corners moves the plane by that much along the ray).
+TYPED_TEST(ShaderIntersect, PlanarQuadAgreesWithTheTwoTriangles) {
+  using L = TypeParam;
+  using R = typename L::Real;
+  const R inf = std::numeric_limits<R>::infinity();
+  Uniform u(10);
+  long rays = 0, hits = 0, disagreements = 0;
+  double worst_t = 0.0;
+  const typename L::vec2 zero = L::v2(0, 0);
+  for (int q = 0; q < 200; ++q) {
+    const double scale = std::pow(10.0, -1.0 + 3.0 * u());
+    const dvec3 e1 = scale * u.unit_vector(), e2 = scale * u.unit_vector();
+    if (glm::length(glm::cross(e1, e2)) < 0.2 * scale * scale) continue;
+    const dvec3 p0 = scale * 2.0 * u.unit_vector();
+    // (a, b) of p3 = p0 + a e1 + b e2: (1, 1) is the parallelogram; a, b > 0 and a + b > 1
+    // keep the quad convex.
+    const double a = q % 2 == 0 ? 1.0 : 0.6 + 0.8 * u(), b = q % 2 == 0 ? 1.0 : 0.6 + 0.8 * u();
+    const typename L::vec3 f0 = L::v3(p0), f1 = L::v3(p0 + e1), f2 = L::v3(p0 + e2),
+                           f3 = L::v3(p0 + a * e1 + b * e2);
+    const dvec3 n = glm::normalize(glm::cross(e1, e2));
+    // Boundary p0 p1 p3 p2 in the plane's coordinates (x along e1, y along the in-plane normal).
+    const dvec3 ex = glm::normalize(e1), ey = glm::cross(n, ex);
+    auto plane2 = [&](dvec3 p) { return dvec2(glm::dot(p - p0, ex), glm::dot(p - p0, ey)); };
+    const dvec2 boundary[4] = {plane2(to_d(f0)), plane2(to_d(f1)), plane2(to_d(f3)), plane2(to_d(f2))};
+    for (int i = 0; i < 500; ++i) {
+      const dvec3 target = p0 + (-0.3 + 1.8 * u()) * e1 + (-0.3 + 1.8 * u()) * e2;
+      // Signed distance to each boundary line (positive inside, the boundary turns left).
+      const dvec2 t2 = plane2(target);
+      double inside = inf;
+      for (int k = 0; k < 4; ++k) {
+        const dvec2 from = boundary[k], along = glm::normalize(boundary[(k + 1) % 4] - from);
+        inside = std::min(inside, along.x * (t2.y - from.y) - along.y * (t2.x - from.x));
+      }
+      if (std::abs(inside) < 1e-4 * scale) continue;
+      dvec3 w = u.unit_vector();
+      if (std::abs(glm::dot(w, n)) < 0.05) continue;
+      const dvec3 o = target + scale * (0.5 + 20.0 * u()) * w;
+      const typename L::Ray ray = L::ray(o, glm::normalize(target - o));
+      const R t_planar = L::intersect_planar_quad(ray, f0, f1, f2, f3, L::v3(n), R(0), inf);
+      const R t_quad = L::intersect_quad(ray, f0, f1, f2, f3, zero, zero, zero, zero, R(0), inf).t;
+      ++rays;
+      disagreements += (t_planar == L::no_hit()) != (inside < 0.0);
+      disagreements += (t_quad == L::no_hit()) != (inside < 0.0);
+      if (t_planar != L::no_hit() && t_quad != L::no_hit()) {
+        ++hits;
+        const double cos_theta = std::abs(glm::dot(glm::normalize(target - o), n));
+        const double bound = 8.0 * double(L::kEps) * (glm::length(p0 - o) + scale) / cos_theta;
+        worst_t = std::max(worst_t, std::abs(double(t_planar) - double(t_quad)) / bound);
+      }
+    }
+  }
+  this->RecordProperty("worst_t_difference_over_bound", std::to_string(worst_t));
+  EXPECT_GT(rays, 40000);
+  EXPECT_GT(hits, 10000);
+  EXPECT_EQ(disagreements, 0) << "of " << rays << " rays";
+  EXPECT_LT(worst_t, 1.0);
+}
+
 TYPED_TEST(ShaderIntersect, ParallelRaysMiss) {
   using L = TypeParam;
   using R = typename L::Real;
@@ -374,12 +439,18 @@ TYPED_TEST(ShaderIntersect, ParallelRaysMiss) {
     return L::intersect_quad(L::ray(o, d), L::v3(p0), L::v3(p1), L::v3(p2), L::v3(p3), zero, zero,
                              zero, zero, R(0), inf).t;
   };
+  auto planar = [&](dvec3 o, dvec3 d) {
+    return L::intersect_planar_quad(L::ray(o, d), L::v3(p0), L::v3(p1), L::v3(p2), L::v3(p3),
+                                    L::v3(0, 1, 0), R(0), inf);
+  };
   Uniform u(9);
   for (int i = 0; i < 1000; ++i) {
     double phi = 2.0 * std::numbers::pi * u();
     dvec3 d(std::cos(phi), 0.0, std::sin(phi));  // exactly in the plane y = 0
     dvec3 o(-3.0 + 6.0 * u(), 0.0, -3.0 + 6.0 * u());
     EXPECT_EQ(quad(o, d), L::no_hit()) << "in the plane";
+    EXPECT_EQ(planar(o, d), L::no_hit()) << "in the plane";
+    EXPECT_EQ(planar(o + dvec3(0, 0.01 + u(), 0), d), L::no_hit()) << "above the plane";
     EXPECT_EQ(quad(o + dvec3(0, 0.01 + u(), 0), d), L::no_hit()) << "above the plane";
     EXPECT_EQ(quad(o - dvec3(0, 0.01 + u(), 0), d), L::no_hit()) << "below the plane";
   }
@@ -396,6 +467,9 @@ TYPED_TEST(ShaderIntersect, ParallelRaysMiss) {
         L::intersect_quad(L::ray(o, in_plane), L::v3(a0), L::v3(a0 + e1), L::v3(a0 + e2),
                           L::v3(a0 + e1 + e2), zero, zero, zero, zero, R(0), inf);
     EXPECT_EQ(hit.t, L::no_hit());
+    EXPECT_EQ(L::intersect_planar_quad(L::ray(o, in_plane), L::v3(a0), L::v3(a0 + e1), L::v3(a0 + e2),
+                                       L::v3(a0 + e1 + e2), L::v3(nrm), R(0), inf),
+              L::no_hit());
   }
 }
 

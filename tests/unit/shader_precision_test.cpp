@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "renderer/quad_shape.h"
 #include "shader_test_util.h"
 
 namespace glint::shader_test {
@@ -186,6 +187,64 @@ TEST(hard_Reintersection, SpawnedRaysNeverRehitAQuadFloat) {
   EXPECT_EQ(failures, 0) << "first: " << first_failure;
 }
 
+// The same for the planar test (intersect_planar_quad), on the quads a scene may give it
+// (quad_is_planar_convex): its t comes from the plane of (p0, p1, p2) and a normal rounded to
+// float, the spawned point from intersect_quad's barycentrics (as the trace shader's hit record
+// does). Axis-aligned rectangles (planar in float wherever they lie) and parallelograms turned
+// at random (kept when their rounded corners pass), at the sizes and distances above.
+TEST(hard_Reintersection, SpawnedRaysNeverRehitAPlanarQuadFloat) {
+  Uniform u(109);
+  long failures = 0, rays = 0, turned = 0;
+  std::string first_failure;
+  const vec2 zero(0.0f);
+  for (ShapeCase sc : shape_cases()) {
+    const double s = sc.size;
+    for (int i = 0; i < 2000; ++i) {
+      const bool aligned = i % 2 == 0;
+      dvec3 e1 = s * u.unit_vector(), e2 = s * u.unit_vector();
+      if (aligned) {
+        const int axis = i % 3;
+        e1 = dvec3(0.0);
+        e2 = dvec3(0.0);
+        e1[axis] = s * (0.5 + u());
+        e2[(axis + 1) % 3] = s * (0.5 + u());
+      }
+      if (glm::length(glm::cross(e1, e2)) < 0.1 * s * s) continue;
+      const vec3 p0 = vec3(sc.distance * u.unit_vector());
+      const vec3 p1 = vec3(dvec3(p0) + e1), p2 = vec3(dvec3(p0) + e2), p3 = vec3(dvec3(p0) + e1 + e2);
+      if (!quad_is_planar_convex({p0, p1, p2, p3})) continue;
+      turned += !aligned;
+      const dvec3 n = glm::normalize(glm::cross(dvec3(p1) - dvec3(p0), dvec3(p2) - dvec3(p0)));
+      const vec3 nf32 = vec3(n);
+      const dvec3 target = dvec3(p0) + (0.02 + 0.96 * u()) * (dvec3(p1) - dvec3(p0)) +
+                           (0.02 + 0.96 * u()) * (dvec3(p2) - dvec3(p0));
+      const double from = i % 4 < 2 ? 1.5 + 8.5 * u() : 1e3 + 9e3 * u();
+      dvec3 w = u.unit_vector();
+      if (std::abs(glm::dot(w, n)) < 0.05) continue;
+      const vec3 o = vec3(target + from * s * w);
+      const F::Ray ray(o, vec3(glm::normalize(target - dvec3(o))));
+      if (F::intersect_planar_quad(ray, p0, p1, p2, p3, nf32, 0.0f, kInf) == F::NO_HIT) continue;
+      const F::QuadHit hit = F::intersect_quad(ray, p0, p1, p2, p3, zero, zero, zero, zero, 0.0f, kInf);
+      if (hit.t == F::NO_HIT) continue;
+      const vec3 nf = vec3(glm::dot(w, n) > 0 ? n : -n);
+      const double cos_theta = i % 8 < 2 ? std::pow(10.0, -4.0 + 2.0 * u()) : 0.01 + 0.99 * u();
+      for (double side : {1.0, -1.0}) {
+        const vec3 origin = F::offset_surface_point(hit.position, float(side) * nf, F::quad_error_scale(p0, p1, p2, p3));
+        const F::Ray next(origin, direction_about(side * dvec3(nf), cos_theta, u));
+        if (F::intersect_planar_quad(next, p0, p1, p2, p3, nf32, 0.0f, kInf) != F::NO_HIT && failures++ == 0)
+          first_failure = "size = " + std::to_string(s) + " |p0| = " + std::to_string(sc.distance) +
+                          " cos = " + std::to_string(cos_theta);
+      }
+      ++rays;
+    }
+  }
+  RecordProperty("rays", std::to_string(rays));
+  std::printf("planar quads: %ld hits (%ld on turned parallelograms)\n", rays, turned);
+  EXPECT_GT(rays, 20000);
+  EXPECT_GT(turned, 2000);
+  EXPECT_EQ(failures, 0) << "first: " << first_failure;
+}
+
 // The huge-sphere floor: radius 1e5, centre (0, -1e5, 0), so its top is the plane y = 0 to
 // within x^2 / 2e5. Rays from a camera 1 to 3 units above look down at 2 to 60 degrees below
 // the horizon onto points within 10 units. The reprojected hit point must lie within the
@@ -260,7 +319,7 @@ TEST(hard_Intersection, TinyFarSphereIsHitByRaysAimedAtIt) {
 // them. No crack lets light through.
 TEST(hard_Intersection, TwoQuadsSharingAnEdgeHaveNoCrack) {
   Uniform u(105);
-  long misses = 0, rays = 0;
+  long misses = 0, planar_misses = 0, rays = 0;
   const vec2 z(0.0f);
   for (int q = 0; q < 400; ++q) {
     const double s = std::pow(10.0, -2.0 + 4.0 * u());
@@ -292,11 +351,17 @@ TEST(hard_Intersection, TwoQuadsSharingAnEdgeHaveNoCrack) {
       const float ta = F::intersect_quad(ray, A[0], A[1], A[2], A[3], z, z, z, z, 0.0f, kInf).t;
       const float tb = F::intersect_quad(ray, B[0], B[1], B[2], B[3], z, z, z, z, 0.0f, kInf).t;
       misses += ta == F::NO_HIT && tb == F::NO_HIT;
+      // The planar test takes the same edge volumes: no crack either (its t uses each quad's
+      // own plane; these quads are planar up to the rounding of their corners).
+      const float pa = F::intersect_planar_quad(ray, A[0], A[1], A[2], A[3], vec3(na), 0.0f, kInf);
+      const float pb = F::intersect_planar_quad(ray, B[0], B[1], B[2], B[3], vec3(nb), 0.0f, kInf);
+      planar_misses += pa == F::NO_HIT && pb == F::NO_HIT;
       ++rays;
     }
   }
   EXPECT_GT(rays, 50000);
   EXPECT_EQ(misses, 0) << "of " << rays << " rays through the shared edge";
+  EXPECT_EQ(planar_misses, 0) << "of " << rays << " rays through the shared edge (planar test)";
 }
 
 // Grazing rays on quads: rays 1e-3 to 1 degree off the plane of a quad 1 to 1e3 units wide,
@@ -304,9 +369,10 @@ TEST(hard_Intersection, TwoQuadsSharingAnEdgeHaveNoCrack) {
 // barycentrics) lies on the target to 1e-5 of the quad's size; rays aimed 5% outside miss.
 TEST(hard_Intersection, GrazingRaysOnQuads) {
   Uniform u(106);
-  long misses = 0, false_hits = 0, rays = 0;
+  long misses = 0, false_hits = 0, planar_misses = 0, planar_false_hits = 0, rays = 0;
   double worst = 0;
   const vec2 z(0.0f);
+  const vec3 up(0.0f, 1.0f, 0.0f);  // the quads' plane is y = 0 (both tests, same answers)
   for (double s : {1.0, 30.0, 1e3}) {
     const vec3 p0(float(-s / 2), 0.0f, float(-s / 2)), p1(float(-s / 2), 0.0f, float(s / 2)),
         p2(float(s / 2), 0.0f, float(-s / 2)), p3(float(s / 2), 0.0f, float(s / 2));
@@ -320,6 +386,7 @@ TEST(hard_Intersection, GrazingRaysOnQuads) {
       const F::Ray ray(vec3(target - dist * dir), vec3(dir));
       const F::QuadHit h = F::intersect_quad(ray, p0, p1, p2, p3, z, z, z, z, 0.0f, kInf);
       ++rays;
+      planar_misses += F::intersect_planar_quad(ray, p0, p1, p2, p3, up, 0.0f, kInf) == F::NO_HIT;
       if (h.t == F::NO_HIT) {
         ++misses;
         continue;
@@ -328,6 +395,7 @@ TEST(hard_Intersection, GrazingRaysOnQuads) {
       const dvec3 outside(s * (0.55 + 0.4 * u()) * (u() < 0.5 ? -1 : 1), 0.0, s * (-0.45 + 0.9 * u()));
       const F::Ray miss(vec3(outside - dist * dir), vec3(dir));
       false_hits += F::intersect_quad(miss, p0, p1, p2, p3, z, z, z, z, 0.0f, kInf).t != F::NO_HIT;
+      planar_false_hits += F::intersect_planar_quad(miss, p0, p1, p2, p3, up, 0.0f, kInf) != F::NO_HIT;
     }
   }
   // The ray's own rounding (its origin is off by eps |o|, up to eps 2.6 s) moves its plane
@@ -336,6 +404,8 @@ TEST(hard_Intersection, GrazingRaysOnQuads) {
   RecordProperty("worst_relative_position_error", std::to_string(worst));
   EXPECT_EQ(misses, 0) << "of " << rays;
   EXPECT_EQ(false_hits, 0) << "of " << rays;
+  EXPECT_EQ(planar_misses, 0) << "of " << rays;
+  EXPECT_EQ(planar_false_hits, 0) << "of " << rays;
 }
 
 // The same hit-point accuracy where it is well defined: elevations 0.1 to 10 degrees; the

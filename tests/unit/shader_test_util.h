@@ -93,6 +93,7 @@ namespace {
     GLINT_SHADER_FWD(NS, intersect_sphere)                                                     \
     GLINT_SHADER_FWD(NS, intersect_triangle)                                                   \
     GLINT_SHADER_FWD(NS, intersect_quad)                                                       \
+    GLINT_SHADER_FWD(NS, intersect_planar_quad)                                                \
     GLINT_SHADER_FWD(NS, quad_normal)                                                          \
     GLINT_SHADER_FWD(NS, is_delta_material)                                                    \
     GLINT_SHADER_FWD(NS, eval_bsdf)                                                            \
