@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -13,6 +14,8 @@
 #include "renderer/atomic_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
+#include "renderer/scene_digest.h"
+#include "renderer/shader_sources.h"
 
 namespace glint {
 namespace {
@@ -79,8 +82,14 @@ nlohmann::json read_cache(const std::filesystem::path& file, std::string& note) 
 
 std::string device_key() {
   const GLubyte* vendor = glGetString(GL_VENDOR);
+  // The shaders too: a build whose path tracer changed may be faster on the other entry point.
+  Hasher shaders;
+  shaders.value(shader_source("trace.frag"));
+  shaders.value(shader_source("trace.comp"));
+  char digest[17];
+  std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(shaders.result()));
   return std::string(vendor ? reinterpret_cast<const char*>(vendor) : "unknown") + " | " +
-         gl_renderer_name() + " | " + gl_version_string();
+         gl_renderer_name() + " | " + gl_version_string() + " | shaders " + digest;
 }
 
 std::optional<std::filesystem::path> default_backend_cache_file() {

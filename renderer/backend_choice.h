@@ -4,8 +4,8 @@
 // GPUs run fragment shaders on only a few of their units and compute shaders on all of them.
 //
 // The cache is a small JSON file, $XDG_CACHE_HOME/glint/backend.json (else
-// ~/.cache/glint/backend.json), keyed by GL_VENDOR, GL_RENDERER and GL_VERSION together (a
-// driver update times again). A cache that cannot be read or written never stops a render:
+// ~/.cache/glint/backend.json), keyed by GL_VENDOR, GL_RENDERER and GL_VERSION together with a
+// digest of the trace shaders' text (a driver update or a changed path tracer times again). A cache that cannot be read or written never stops a render:
 // the choice is timed instead, and `note` says so in one line.
 #pragma once
 

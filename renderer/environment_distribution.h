@@ -43,12 +43,13 @@ EnvironmentDistribution build_environment_distribution(int width, int height,
 // From an image; an empty image gives a 1x1 uniform distribution.
 EnvironmentDistribution build_environment_distribution(const Image& image);
 
-// The tables as one float array for a std430 storage buffer (float stride 4, no padding):
+// The tables as one float array (float stride 4, no padding; the shader reads it from an R32I
+// texture, each texel the float's bits):
 //   data[i]                                  marginal CDF, i in [0, height]
 //   data[(height + 1) + row * (width + 1) + i]  conditional CDF of row, i in [0, width]
 // width and height go in a uniform. trace_common.glsl then defines, before including
 // lib/environment_sampling.glsl:
-//   layout(std430, binding = N) readonly buffer EnvDistribution { float env_cdf[]; };
+//   layout(binding = N) uniform isampler2D u_env_cdf_table;
 //   uniform ivec2 u_env_distribution_size;
 //   ivec2 env_distribution_size() { return u_env_distribution_size; }
 //   float env_marginal_cdf(int i) { return env_cdf[i]; }

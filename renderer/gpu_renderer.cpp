@@ -1,9 +1,11 @@
 #include "renderer/gpu_renderer.h"
 
 #include <algorithm>
+#include <bit>
 #include <initializer_list>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <thread>
@@ -24,15 +26,6 @@
 
 namespace glint {
 namespace {
-
-// Uploads `data` into a shader storage buffer, never empty (a zero-size binding is invalid).
-template <typename T>
-void upload_storage(GLuint buffer, const std::vector<T>& data) {
-  std::vector<T> padded = data;
-  if (padded.empty()) padded.push_back(T{});
-  glNamedBufferData(buffer, static_cast<GLsizeiptr>(padded.size() * sizeof(T)), padded.data(),
-                    GL_STATIC_DRAW);
-}
 
 void clear_gl_errors() {
   while (glGetError() != GL_NO_ERROR) {
@@ -90,21 +83,32 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   estimator_ = std::make_unique<ErrorEstimator>();
   glCreateVertexArrays(1, &vao_);
-  glCreateBuffers(kBuffers, buffers_);
+  glCreateTextures(GL_TEXTURE_2D, kTables, table_textures_);
+  for (GLuint t : table_textures_) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, 0);
+  }
   llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
-  // The BVH buffers are bound for every pass: never without storage, even before a BVH exists.
-  upload_storage(buffers_[6], std::vector<GpuBvhNode>{});
-  upload_storage(buffers_[7], std::vector<int32_t>{});
+  // Every table is bound for every pass: never without storage, even before a scene or a BVH
+  // exists.
+  upload_table(0, std::vector<GpuSphere>{});
+  upload_table(1, std::vector<GpuQuad>{});
+  upload_table(2, std::vector<GpuMaterial>{});
+  upload_table(3, std::vector<glm::ivec4>{});
+  upload_table(4, std::vector<GpuLight>{});
+  upload_table(5, std::vector<float>{});
+  upload_table(6, std::vector<GpuBvhNode>{});
+  upload_table(7, std::vector<int32_t>{});
 }
 
 GpuRenderer::~GpuRenderer() {
   estimator_.reset();
   resize(0, 0);
-  glDeleteBuffers(kBuffers, buffers_);
+  glDeleteTextures(kTables, table_textures_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   glDeleteTextures(2, texel_textures_);
-  glDeleteBuffers(2, texel_buffers_);
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
 }
 
@@ -237,19 +241,80 @@ void GpuRenderer::update_bvh(const PackedScene& packed, const glm::vec3& camera)
   }
   bvh_extent_ = extent;
   bvh_valid_ = true;
-  upload_storage(buffers_[6], bvh_.nodes);
-  upload_storage(buffers_[7], bvh_.primitives);
+  check_table_size("the BVH's nodes", bvh_.nodes);
+  check_table_size("the BVH's primitive list", bvh_.primitives);
+  upload_table(6, bvh_.nodes);
+  upload_table(7, bvh_.primitives);
   bvh_stats_.nodes = bvh_.nodes.size();
   bvh_stats_.depth = bvh_.depth;
   bvh_stats_.refit = refit;
   bvh_stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The texels a table of `data` needs (one per 16 bytes, or one per int or float).
+template <typename T>
+int64_t table_texels(const std::vector<T>& data) {
+  static_assert(sizeof(T) % 16 == 0 || sizeof(T) == 4, "an RGBA32I or R32I texel layout");
+  return int64_t(data.size()) * (sizeof(T) % 16 == 0 ? int64_t(sizeof(T) / 16) : 1);
+}
+
+int64_t GpuRenderer::table_texel_limit() const {
+  int64_t limit = renderer_options_.max_table_texels;
+  if (limit <= 0) {
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    limit = int64_t(kTableWidth) * max_side;
+  }
+  // Texel indices are ints in the shader.
+  return std::min<int64_t>(limit, std::numeric_limits<int>::max());
+}
+
+template <typename T>
+void GpuRenderer::check_table_size(const std::string& what, const std::vector<T>& data) const {
+  const int64_t limit = table_texel_limit();
+  if (table_texels(data) > limit)
+    throw std::runtime_error(what + " (" + std::to_string(data.size()) + ") need " +
+                             std::to_string(table_texels(data)) +
+                             " texels, more than this OpenGL driver holds (" +
+                             std::to_string(limit) + " texels in a table: " +
+                             std::to_string(kTableWidth) + " per row, GL_MAX_TEXTURE_SIZE rows)");
+}
+
+// Uploads `data` into table k, the integer texture the trace shader reads it from
+// (shaders/trace_common.glsl): rows of kTableWidth texels, as many rows as a power of two needs
+// (at least one). Why a 2-D texture and a power of two, not a buffer texture of the exact size:
+// llvmpipe keys its compiled shaders by each bound texture's sampler state and by whether its
+// sides are powers of two (gallivm's lp_sampler_static_texture_state), and Mesa leaves the
+// sampler state of a buffer texture's unit as the previous draw set it. Either would make a
+// draw compile the program again, on the calling thread, after the worker's warm-up draw
+// (program_worker.h) had compiled it in another state. The texture's storage is mutable, so its
+// name never changes (a warm-up job holds the names).
+template <typename T>
+void GpuRenderer::upload_table(int k, const std::vector<T>& data) {
+  constexpr int channels = sizeof(T) % 16 == 0 ? 4 : 1;
+  const int64_t rows = std::bit_ceil(
+      static_cast<uint64_t>(std::max<int64_t>(1, (table_texels(data) + kTableWidth - 1) / kTableWidth)));
+  std::vector<int32_t> texels(static_cast<size_t>(rows * kTableWidth * channels), 0);
+  if (!data.empty()) std::memcpy(texels.data(), data.data(), data.size() * sizeof(T));
+  GLint bound = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
+  glBindTexture(GL_TEXTURE_2D, table_textures_[k]);
+  glTexImage2D(GL_TEXTURE_2D, 0, channels == 4 ? GL_RGBA32I : GL_R32I, kTableWidth,
+               static_cast<GLsizei>(rows), 0, channels == 4 ? GL_RGBA_INTEGER : GL_RED_INTEGER,
+               GL_INT, texels.data());
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+}
+
 void GpuRenderer::upload_geometry(const PackedScene& packed) {
-  upload_storage(buffers_[0], packed.spheres);
-  upload_storage(buffers_[1], packed.quads);
-  upload_storage(buffers_[2], packed.materials);
-  upload_storage(buffers_[4], packed.lights);
+  // All checked before any is replaced: a refused scene leaves the previous one in place.
+  check_table_size("spheres", packed.spheres);
+  check_table_size("quads", packed.quads);
+  check_table_size("materials", packed.materials);
+  check_table_size("lights", packed.lights);
+  upload_table(0, packed.spheres);
+  upload_table(1, packed.quads);
+  upload_table(2, packed.materials);
+  upload_table(4, packed.lights);
   shape_count_ = static_cast<long>(packed.spheres.size() + packed.quads.size());
   light_count_ = static_cast<int>(packed.lights.size());
   uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
@@ -257,14 +322,34 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   bvh_valid_ = false;  // refitted or rebuilt by sync if the BVH is used
 }
 
+// Copies `count` texels of `texel_bytes` each to texels [first, first + count) of `texture`, a
+// 2-D texture read row after row (rows of kTableWidth): a partial first row, the whole rows, a
+// partial last row.
+static void upload_texel_run(GLuint texture, GLenum type, int64_t texel_bytes, int64_t first,
+                             int64_t count, const unsigned char* data) {
+  const GLenum format = GL_RGBA;
+  auto put = [&](int64_t x, int64_t y, int64_t width, int64_t height) {
+    glTextureSubImage2D(texture, 0, static_cast<GLint>(x), static_cast<GLint>(y),
+                        static_cast<GLsizei>(width), static_cast<GLsizei>(height), format, type, data);
+    data += width * height * texel_bytes;
+    first += width * height;
+    count -= width * height;
+  };
+  constexpr int64_t w = GpuRenderer::kTableWidth;
+  if (count > 0 && first % w != 0) put(first % w, first / w, std::min(count, w - first % w), 1);
+  if (count >= w) put(0, first / w, w, count / w);
+  if (count > 0) put(0, first / w, count, 1);
+}
+
 // Texture storage. The shader filters by hand (lib/mapping.glsl), so each texture is a row-major
-// run of texels in a buffer texture: memory is the sum of the real sizes (a texture array
-// takes the largest width times the largest height for every layer, 8 GiB for a 16384x1 and a
-// 1x16384 texture), the count is bounded only by the layer records' storage buffer (an array
-// by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit textures keep 4 bytes a texel.
-// There are two buffers because a buffer texture has one format (RGBA8, RGBA32F). An atlas
-// would need packing and would still cap a side; arrays per size class would need a sampler
-// per class.
+// run of texels in one long sequence, stored row after row in a 2-D texture of kTableWidth
+// texels a row (2-D, not a buffer texture, for the reason upload_table gives): memory is the
+// sum of the real sizes (a texture array takes the largest width times the largest height for
+// every layer, 8 GiB for a 16384x1 and a 1x16384 texture), the count is bounded only by the
+// layer records' table (an array by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit
+// textures keep 4 bytes a texel. There are two sequences because a texture has one format
+// (RGBA8, RGBA32F). An atlas would need packing and would still cap a side; arrays per size
+// class would need a sampler per class.
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
   auto json_path = [](const TextureLayer& layer) {
     return "textures[" + std::to_string(layer.texture) + "].path";
@@ -280,12 +365,12 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
       throw ImageError(json_path(layer) + ": " + e.what());
     }
   }
-  // Offsets are ints in the shader, and the driver caps a buffer texture's size.
-  int64_t limit = renderer_options_.max_texture_buffer_texels;
+  // Offsets are ints in the shader, and the driver caps a texture's rows.
+  int64_t limit = renderer_options_.max_texture_texels;
   if (limit <= 0) {
-    GLint64 driver = 0;
-    glGetInteger64v(GL_MAX_TEXTURE_BUFFER_SIZE, &driver);
-    limit = driver;
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    limit = int64_t(kTableWidth) * max_side;
   }
   limit = std::min<int64_t>(limit, std::numeric_limits<int>::max());
   // Each file's texels once, also when several layers read them (colour and roughness).
@@ -309,51 +394,49 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
         throw ImageError(json_path(layers[i]) + ": " + files[i].string() + ": the textures need " +
                          std::to_string(texels[kind]) + (kind ? " float" : " 8-bit") +
                          " texels, more than this OpenGL driver holds (" + std::to_string(limit) +
-                         " texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
+                         " texels: " + std::to_string(kTableWidth) + " per row, GL_MAX_TEXTURE_SIZE rows)");
     }
     const int format = kind ? gpu::TEXELS_FLOAT
                             : layers[i].encoding == ColorEncoding::srgb ? gpu::TEXELS_8BIT_SRGB
                                                                         : gpu::TEXELS_8BIT_LINEAR;
     records.emplace_back(image.width(), image.height(), static_cast<int>(run->first), format);
   }
-  // New buffers first: should the driver refuse one, the previous textures stay in place.
+  // New textures first: should the driver refuse one, the previous ones stay in place.
   clear_gl_errors();
-  GLuint buffers[2] = {0, 0}, textures[2] = {0, 0};
-  glCreateBuffers(2, buffers);
-  glCreateTextures(GL_TEXTURE_BUFFER, 2, textures);
+  GLuint textures[2] = {0, 0};
+  glCreateTextures(GL_TEXTURE_2D, 2, textures);
   const GLenum formats[2] = {GL_RGBA8, GL_RGBA32F};
+  const GLenum types[2] = {GL_UNSIGNED_BYTE, GL_FLOAT};
   const int64_t texel_bytes[2] = {4, 16};
   std::string failure;
   for (int k = 0; k < 2 && failure.empty(); ++k) {
-    // Never empty: a buffer texture needs storage to be complete.
-    const int64_t bytes = std::max<int64_t>(1, texels[k]) * texel_bytes[k];
-    glNamedBufferStorage(buffers[k], static_cast<GLsizeiptr>(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    // Never empty: a texture needs storage to be complete.
+    const int64_t rows = std::max<int64_t>(1, (texels[k] + kTableWidth - 1) / kTableWidth);
+    glTextureStorage2D(textures[k], 1, formats[k], kTableWidth, static_cast<GLsizei>(rows));
+    glTextureParameteri(textures[k], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(textures[k], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     failure = gl_error_text();
     if (!failure.empty()) {
-      failure = "cannot allocate " + bytes_text(double(bytes)) + " for the " +
-                (k ? "float" : "8-bit") + " textures (" + failure + ")";
+      failure = "cannot allocate " + bytes_text(double(rows) * kTableWidth * texel_bytes[k]) +
+                " for the " + (k ? "float" : "8-bit") + " textures (" + failure + ")";
       break;
     }
     for (const Run& run : runs[k]) {
-      const void* data = k ? static_cast<const void*>(run.image->linear.pixels.data())
-                           : static_cast<const void*>(run.image->rgba8.data());
-      glNamedBufferSubData(buffers[k], static_cast<GLintptr>(run.first * texel_bytes[k]),
-                           static_cast<GLsizeiptr>(run.image->byte_size()), data);
+      const auto* data = k ? reinterpret_cast<const unsigned char*>(run.image->linear.pixels.data())
+                           : reinterpret_cast<const unsigned char*>(run.image->rgba8.data());
+      upload_texel_run(textures[k], types[k], texel_bytes[k], run.first,
+                       int64_t(run.image->width()) * run.image->height(), data);
     }
-    glTextureBuffer(textures[k], formats[k], buffers[k]);
     failure = gl_error_text();
     if (!failure.empty()) failure = "cannot upload the textures (" + failure + ")";
   }
   if (!failure.empty()) {
     glDeleteTextures(2, textures);
-    glDeleteBuffers(2, buffers);
     throw ImageError("textures: " + failure);  // all of them together
   }
   glDeleteTextures(2, texel_textures_);
-  glDeleteBuffers(2, texel_buffers_);
-  std::copy(buffers, buffers + 2, texel_buffers_);
   std::copy(textures, textures + 2, texel_textures_);
-  upload_storage(buffers_[3], records);
+  upload_table(3, records);
   layers_ = layers;
 }
 
@@ -388,6 +471,13 @@ void GpuRenderer::upload_environment(const Scene& scene) {
     throw ImageError(where + std::to_string(image->width) +
                      "x" + std::to_string(image->height) + " is more than this OpenGL driver holds (" +
                      std::to_string(max_side) + " texels per side, GL_MAX_TEXTURE_SIZE)");
+  PackedEnvironmentDistribution tables =
+      pack_environment_distribution(build_environment_distribution(*image));
+  try {
+    check_table_size("its sampling tables' floats", tables.data);
+  } catch (const std::runtime_error& e) {
+    throw ImageError(where + e.what());
+  }
   clear_gl_errors();
   GLuint texture_id = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture_id);
@@ -409,9 +499,7 @@ void GpuRenderer::upload_environment(const Scene& scene) {
   glTextureParameteri(environment_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  PackedEnvironmentDistribution tables =
-      pack_environment_distribution(build_environment_distribution(*image));
-  upload_storage(buffers_[5], tables.data);
+  upload_table(5, tables.data);
   if (const std::string error = gl_error_text(); !error.empty())
     throw ImageError(where + "cannot allocate " +
                      bytes_text(double(tables.data.size()) * sizeof(float)) +
@@ -576,14 +664,14 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
   const GLuint textures[7] = {accumulation_[current_], texel_textures_[0], environment_texture_,
                               compensation_[current_], texel_textures_[1], variance_[current_],
                               variance_compensation_[current_]};
-  std::vector<GLuint> buffers(buffers_, buffers_ + kBuffers);
-  job->warm_up = [uniforms, textures, buffers, compute](GlProgram& p) {
+  std::vector<GLuint> tables(table_textures_, table_textures_ + kTables);
+  job->warm_up = [uniforms, textures, tables, compute](GlProgram& p) {
     apply_trace_uniforms(p, uniforms);
     p.set("u_resolution", glm::ivec2(1, 1));
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
-    for (GLuint i = 0; i < buffers.size(); ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
     for (GLuint i = 0; i < 7; ++i) glBindTextureUnit(i, textures[i]);
+    for (GLuint k = 0; k < tables.size(); ++k) glBindTextureUnit(kTableUnit + k, tables[k]);
     if (compute) {
       warm_up_compute_pass();
       return;
@@ -635,7 +723,7 @@ GlProgram& GpuRenderer::bind_trace_pass(GlProgram& p, int samples, int64_t sampl
   p.set("u_adaptive_every", static_cast<unsigned>(std::max(1, options_.adaptive_every)));
   p.set("u_pass_index", static_cast<unsigned>(pass_index));
   glUseProgram(p.id());
-  for (GLuint i = 0; i < kBuffers; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers_[i]);
+  for (GLuint k = 0; k < kTables; ++k) glBindTextureUnit(kTableUnit + k, table_textures_[k]);
   glBindTextureUnit(1, texel_textures_[0]);
   glBindTextureUnit(2, environment_texture_);
   glBindTextureUnit(4, texel_textures_[1]);

@@ -55,13 +55,19 @@ struct GpuRendererOptions {
   // Appended to every specialised program's defines. Tests put a nonce here, so that the
   // driver's shader cache has never seen the program and its compile is really timed.
   std::string extra_defines;
-  // Texels a texture buffer may hold; 0 for the driver's GL_MAX_TEXTURE_BUFFER_SIZE. Tests set
-  // a small one to reach the refusal that a driver's limit gives.
-  int64_t max_texture_buffer_texels = 0;
+  // Texels the textures of one kind (8-bit, float) may hold together; 0 for the driver's limit
+  // (kTableWidth x GL_MAX_TEXTURE_SIZE). Tests set a small one to reach the refusal.
+  int64_t max_texture_texels = 0;
+  // Texels a scene table may hold (spheres take 2 each, quads 8); 0 for the driver's limit
+  // (kTableWidth x GL_MAX_TEXTURE_SIZE). Tests set a small one to reach the refusal.
+  int64_t max_table_texels = 0;
 };
 
 class GpuRenderer {
  public:
+  // Texels per row of the integer and colour textures that hold the scene's tables and the
+  // textures' texels (TABLE_ROW_SHIFT in shaders/trace_common.glsl).
+  static constexpr int kTableWidth = 16384;
   // Compiles the generic trace program and the tonemap program; throws std::runtime_error
   // with the driver's log. Programs specialised to a scene's ShaderFeatures are compiled
   // later, when a scene needs them (see trace()).
@@ -172,6 +178,11 @@ class GpuRenderer {
 
  private:
   void resize(int width, int height);
+  int64_t table_texel_limit() const;  // kTableWidth x GL_MAX_TEXTURE_SIZE, or the option's
+  template <typename T>
+  void check_table_size(const std::string& what, const std::vector<T>& data) const;
+  template <typename T>
+  void upload_table(int k, const std::vector<T>& data);
   void upload_geometry(const PackedScene& packed);
   void update_bvh(const PackedScene& packed, const glm::vec3& camera);
   void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
@@ -243,12 +254,13 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};  // each draws into the four targets of side i
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  static constexpr int kBuffers = 8;
-  GLuint buffers_[kBuffers] = {};  // spheres, quads, materials, layer sizes, lights,
-                                   // environment-sampling tables, BVH nodes, BVH primitives
-  // Texel buffers of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F, and
-  // the buffer textures that read them.
-  GLuint texel_buffers_[2] = {0, 0};
+  // The scene's tables, read by the trace shader from integer textures (upload_table): spheres,
+  // quads, materials, texture layer records, lights, environment-sampling tables, BVH nodes,
+  // BVH primitives; table k on texture unit kTableUnit + k (shaders/trace_common.glsl).
+  static constexpr int kTables = 8;
+  static constexpr GLuint kTableUnit = 7;
+  GLuint table_textures_[kTables] = {};
+  // The texels of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F.
   GLuint texel_textures_[2] = {0, 0};
   GLuint environment_texture_ = 0;
 

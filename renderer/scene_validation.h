@@ -20,9 +20,10 @@ namespace glint {
 //    display texture), so the largest film takes 4.25 GiB; a larger one is refused with its
 //    memory estimate, never attempted.
 //  - Spheres and quads: at most kMaxSpheres and kMaxQuads each (2^20; 10^6 spheres load). Their
-//    std430 arrays (32 and 128 bytes an element) then stay within 128 MiB, the smallest
-//    GL_MAX_SHADER_STORAGE_BLOCK_SIZE that OpenGL 4.5 allows. A longer array is refused before
-//    any of its elements is read.
+//    tables (2 and 8 texels of 16 bytes an element) then stay within 2^23 texels, well inside
+//    the 2^28 a table holds where GL_MAX_TEXTURE_SIZE is 16384 (the renderer refuses a table
+//    beyond its driver's limit). A longer array is refused before any of its elements is
+//    read.
 // (project_file.h adds the limit of the file's size.)
 constexpr int kMaxFilmSide = 16384;
 constexpr int64_t kMaxFilmPixels = int64_t(1) << 26;  // e.g. 8192 x 8192

@@ -26,7 +26,7 @@ void first_diffuse_surface(Ray ray, out vec3 albedo, out vec3 normal) {
       normal = vec3(0.0);
       return;
     }
-    GpuMaterial gm = materials[hit.material];
+    GpuMaterial gm = material_at(hit.material);
     vec3 wo = -ray.direction;
     vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;
     vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);

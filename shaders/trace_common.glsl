@@ -50,22 +50,57 @@ struct GpuMaterial {
   ivec4 layers;   // texture layers of colour, emission, roughness; -1 for none
 };
 
-layout(std430, binding = 0) readonly buffer Spheres { GpuSphere spheres[]; };
-layout(std430, binding = 1) readonly buffer Quads { GpuQuad quads[]; };
-layout(std430, binding = 2) readonly buffer Materials { GpuMaterial materials[]; };
 struct GpuLight {
   ivec4 shape;   // x: 0 sphere, 1 quad; y: its index
   vec4 select;   // x: pdf of picking it, y: cdf
 };
 
-layout(std430, binding = 3) readonly buffer TextureLayers { ivec4 texture_layers[]; };  // see lib/mapping.glsl
-layout(std430, binding = 4) readonly buffer Lights { GpuLight lights[]; };
+// The scene's tables (renderer/gpu_scene.h, renderer/bvh.h, renderer/environment_distribution.h):
+// their std430 bytes in integer textures (RGBA32I, 16 bytes a texel, or R32I for the lists of
+// ints and floats; a float is intBitsToFloat of its texel, every bit kept), element after element
+// in rows of 2^TABLE_ROW_SHIFT texels; texture unit 7 + k holds the renderer's table k
+// (GpuRenderer::upload_table says why 2-D). Why not storage buffers: on llvmpipe a
+// storage-buffer read is a loop over the SIMD group's lanes with a branch per lane and
+// component, a texel fetch one gather (bench/THROUGHPUT.md).
+layout(binding = 7) uniform isampler2D u_sphere_table;          // GpuSphere: 2 texels
+layout(binding = 8) uniform isampler2D u_quad_table;            // GpuQuad: 8 texels
+layout(binding = 9) uniform isampler2D u_material_table;        // GpuMaterial: 4 texels
+layout(binding = 10) uniform isampler2D u_texture_layer_table;  // ivec4, see lib/mapping.glsl
+layout(binding = 11) uniform isampler2D u_light_table;          // GpuLight: 2 texels
+layout(binding = 12) uniform isampler2D u_env_cdf_table;        // float (R32I)
 // The BVH of renderer/bvh.h (bound only when u_use_bvh).
-layout(std430, binding = 6) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 7) readonly buffer BvhPrimitives { int bvh_primitives[]; };
+layout(binding = 13) uniform isampler2D u_bvh_node_table;       // BvhNode: 2 texels
+layout(binding = 14) uniform isampler2D u_bvh_primitive_table;  // int (R32I)
 
-layout(binding = 1) uniform samplerBuffer u_texels_8bit;   // RGBA8, as stored
-layout(binding = 4) uniform samplerBuffer u_texels_float;  // RGBA32F
+const int TABLE_ROW_SHIFT = 14;  // 16384 texels a row (GpuRenderer::kTableWidth)
+ivec2 table_position(int texel) {
+  return ivec2(texel & ((1 << TABLE_ROW_SHIFT) - 1), texel >> TABLE_ROW_SHIFT);
+}
+ivec4 table_texel(isampler2D table, int texel) { return texelFetch(table, table_position(texel), 0); }
+vec4 table_vec4(isampler2D table, int texel) { return intBitsToFloat(table_texel(table, texel)); }
+// Element i of a table; the compiler drops the fetches of fields that are not used.
+GpuSphere sphere_at(int i) {
+  return GpuSphere(table_vec4(u_sphere_table, 2 * i), table_texel(u_sphere_table, 2 * i + 1));
+}
+GpuQuad quad_at(int i) {
+  int k = 8 * i;
+  return GpuQuad(table_vec4(u_quad_table, k), table_vec4(u_quad_table, k + 1),
+                 table_vec4(u_quad_table, k + 2), table_vec4(u_quad_table, k + 3),
+                 table_vec4(u_quad_table, k + 4), table_vec4(u_quad_table, k + 5),
+                 table_vec4(u_quad_table, k + 6), table_texel(u_quad_table, k + 7));
+}
+GpuMaterial material_at(int i) {
+  int k = 4 * i;
+  return GpuMaterial(table_vec4(u_material_table, k), table_vec4(u_material_table, k + 1),
+                     table_vec4(u_material_table, k + 2), table_texel(u_material_table, k + 3));
+}
+GpuLight light_at(int i) {
+  return GpuLight(table_texel(u_light_table, 2 * i), table_vec4(u_light_table, 2 * i + 1));
+}
+
+// The textures' texels, in rows as the tables (lib/mapping.glsl's texel_index is the position).
+layout(binding = 1) uniform sampler2D u_texels_8bit;   // RGBA8, as stored
+layout(binding = 4) uniform sampler2D u_texels_float;  // RGBA32F
 layout(binding = 2) uniform sampler2D u_environment;
 
 uniform ivec2 u_resolution;
@@ -158,8 +193,8 @@ vec2 sample_2d(uint dimension) {
 #if !defined(GLINT_NO_TEXTURES)
 vec4 fetch_texel(ivec4 layer, int x, int y) {
   int i = texel_index(layer, x, y);
-  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, i);
-  vec4 t = texelFetch(u_texels_8bit, i);
+  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, table_position(i), 0);
+  vec4 t = texelFetch(u_texels_8bit, table_position(i), 0);
   if (layer.w == TEXELS_8BIT_SRGB) t.rgb = vec3(srgb_decode(t.r), srgb_decode(t.g), srgb_decode(t.b));
   return t;
 }
@@ -170,7 +205,7 @@ vec4 texture_lookup(int layer, vec2 uv) {
   return vec4(1.0);  // no used material has a texture: every layer is -1
 #else
   if (layer < 0) return vec4(1.0);
-  ivec4 l = texture_layers[layer];
+  ivec4 l = table_texel(u_texture_layer_table, layer);
   BilinearTaps taps = bilinear_taps(uv, l.xy);
   vec4 a = fetch_texel(l, taps.texels.x, taps.texels.y);
   vec4 b = fetch_texel(l, taps.texels.z, taps.texels.y);
@@ -189,12 +224,12 @@ vec3 environment(vec3 d) {
 
 // Importance sampling of the environment map: the tables of
 // renderer/environment_distribution.h, read by lib/environment_sampling.glsl.
-layout(std430, binding = 5) readonly buffer EnvDistribution { float env_cdf[]; };
 uniform ivec2 u_env_distribution_size;
 ivec2 env_distribution_size() { return u_env_distribution_size; }
-float env_marginal_cdf(int i) { return env_cdf[i]; }
+float env_cdf(int i) { return intBitsToFloat(table_texel(u_env_cdf_table, i).x); }
+float env_marginal_cdf(int i) { return env_cdf(i); }
 float env_conditional_cdf(int row, int i) {
-  return env_cdf[u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i];
+  return env_cdf(u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i);
 }
 #include "lib/environment_sampling.glsl"
 
@@ -212,26 +247,29 @@ struct SceneHit {
 int scene_sphere_count() { return u_sphere_count; }
 int scene_quad_count() { return u_quad_count; }
 float scene_sphere_hit(int i, Ray ray, float tmax) {
-  vec4 s = spheres[i].center_radius;
+  vec4 s = sphere_at(i).center_radius;
   return intersect_sphere(ray, s.xyz, s.w, 0.0, tmax);
 }
 float scene_quad_hit(int i, Ray ray, float tmax) {
 #if defined(GLINT_NO_GENERAL_QUADS)
-  // Every quad is planar and convex: intersect_planar_quad, with the corners read only for a t
-  // in range (lib/intersect.glsl says why).
-  vec3 p0 = quads[i].p0.xyz;
-  float t = planar_quad_plane_t(ray, p0, quads[i].normal.xyz, 0.0, tmax);
+  // Every quad is planar and convex: intersect_planar_quad's two steps.
+  GpuQuad q = quad_at(i);
+  float t = planar_quad_plane_t(ray, q.p0.xyz, q.normal.xyz, 0.0, tmax);
   if (t == NO_HIT) return NO_HIT;
-  if (!planar_quad_inside_edges(ray, p0, quads[i].p1.xyz, quads[i].p2.xyz, quads[i].p3.xyz)) return NO_HIT;
+  if (!planar_quad_inside_edges(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz)) return NO_HIT;
   return t;
 #else
-  GpuQuad q = quads[i];
+  GpuQuad q = quad_at(i);
   return intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
                         q.uv23.xy, q.uv23.zw, 0.0, tmax).t;
 #endif
 }
-BvhNode bvh_node(int i) { return bvh_nodes[i]; }
-int bvh_primitive(int i) { return bvh_primitives[i]; }
+BvhNode bvh_node(int i) {
+  ivec4 a = table_texel(u_bvh_node_table, 2 * i);
+  ivec4 b = table_texel(u_bvh_node_table, 2 * i + 1);
+  return BvhNode(intBitsToFloat(a.xyz), a.w, intBitsToFloat(b.xyz), b.w);
+}
+int bvh_primitive(int i) { return table_texel(u_bvh_primitive_table, i).x; }
 
 // Set when a BVH traversal of this sample stopped at its step cap: the sample is discarded
 // (counted with the non-finite ones) rather than added with a possibly wrong hit.
@@ -260,7 +298,7 @@ SceneHit intersect_scene(Ray ray) {
   if (closest.ref >= u_sphere_count)
 #endif
   {
-    GpuQuad q = quads[closest.ref - u_sphere_count];
+    GpuQuad q = quad_at(closest.ref - u_sphere_count);
     // The quad's nearest hit again, for its texture coordinates and point (the same t: the
     // test's result does not depend on tmax beyond it).
     QuadHit h = intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
@@ -278,7 +316,7 @@ SceneHit intersect_scene(Ray ray) {
 #endif
 #if !defined(GLINT_NO_SPHERES)
   {
-    GpuSphere sphere = spheres[closest.ref];
+    GpuSphere sphere = sphere_at(closest.ref);
     vec4 s = sphere.center_radius;
     hit.position = sphere_hit_point(ray, hit.t, s.xyz, s.w);
     hit.error_scale = sphere_error_scale(s.xyz, s.w);
@@ -324,17 +362,17 @@ vec3 straight_transmittance(GpuMaterial gm, vec4 color_tex, vec2 uv, float cover
 
 // The solid-angle pdf with which next-event estimation at p picks the point y of light i.
 float light_pdf(int i, vec3 p, vec3 y) {
-  GpuLight l = lights[i];
+  GpuLight l = light_at(i);
   float shape_pdf = 0.0;
 #if !defined(GLINT_NO_SPHERES)
   if (l.shape.x == 0) {
-    vec4 s = spheres[l.shape.y].center_radius;
+    vec4 s = sphere_at(l.shape.y).center_radius;
     shape_pdf = sphere_light_pdf(p, s.xyz, s.w, y);
   }
 #endif
 #if !defined(GLINT_NO_QUADS)
   if (l.shape.x != 0) {
-    GpuQuad q = quads[l.shape.y];
+    GpuQuad q = quad_at(l.shape.y);
     shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
   }
 #endif
@@ -347,7 +385,7 @@ int pick_light(float u) {
   int hi = u_light_count - 1;
   while (lo < hi) {
     int mid = (lo + hi) / 2;
-    if (u < lights[mid].select.y) hi = mid;
+    if (u < light_at(mid).select.y) hi = mid;
     else lo = mid + 1;
   }
   return lo;
@@ -356,11 +394,11 @@ int pick_light(float u) {
 // The material of primitive `ref` of a closest hit: x its index, y its light's (-1: none).
 ivec4 primitive_material(int ref) {
 #if !defined(GLINT_NO_QUADS) && !defined(GLINT_NO_SPHERES)
-  return ref >= u_sphere_count ? quads[ref - u_sphere_count].material : spheres[ref].material;
+  return ref >= u_sphere_count ? quad_at(ref - u_sphere_count).material : sphere_at(ref).material;
 #elif !defined(GLINT_NO_QUADS)
-  return quads[ref - u_sphere_count].material;
+  return quad_at(ref - u_sphere_count).material;
 #else
-  return spheres[ref].material;
+  return sphere_at(ref).material;
 #endif
 }
 
@@ -377,12 +415,12 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
   if (closest.ref < 0) return target < 0 ? environment(wi) : vec3(0.0);
   ivec4 material = primitive_material(closest.ref);
   if (target < 0 || material.y != target) return vec3(0.0);
-  return materials[material.x].emission.rgb;
+  return material_at(material.x).emission.rgb;
 #else
   SceneHit hit = intersect_scene(ray);
   if (hit.material < 0) return target < 0 ? environment(wi) : vec3(0.0);
   if (target < 0 || hit.light != target) return vec3(0.0);
-  return material_emission(materials[hit.material], hit.uv);
+  return material_emission(material_at(hit.material), hit.uv);
 #endif
 }
 #else
@@ -394,7 +432,7 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
   for (int passes = 0; passes <= MAX_PASS_THROUGH; ++passes) {
     SceneHit hit = intersect_scene(ray);
     if (hit.material < 0) return target < 0 ? transmittance * environment(wi) : vec3(0.0);
-    GpuMaterial gm = materials[hit.material];
+    GpuMaterial gm = material_at(hit.material);
     vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
     float coverage = gm.params.z * color_tex.a;
 #if !defined(GLINT_NO_EMITTERS)
@@ -413,18 +451,18 @@ vec3 shadow_ray(vec3 origin, vec3 wi, int target) {
 
 // A light sample seen from `origin`: the point the shadow ray actually starts from.
 LightSample sample_light(int i, vec3 origin, vec2 u) {
-  GpuLight l = lights[i];
+  GpuLight l = light_at(i);
 #if !defined(GLINT_NO_SPHERES) || defined(GLINT_NO_QUADS)  // (with neither shape, never called)
 #if !defined(GLINT_NO_QUADS)
   if (l.shape.x == 0)
 #endif
   {
-    vec4 s = spheres[l.shape.y].center_radius;
+    vec4 s = sphere_at(l.shape.y).center_radius;
     return sample_sphere_light(origin, s.xyz, s.w, u);
   }
 #endif
 #if !defined(GLINT_NO_QUADS)
-  GpuQuad q = quads[l.shape.y];
+  GpuQuad q = quad_at(l.shape.y);
   return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
 #endif
 }
@@ -468,7 +506,7 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
     }
     if (!ls.valid) return vec3(0.0);
     wi = ls.wi;
-    pdf = (1.0 - u_env_select) * lights[target].select.x * ls.pdf;
+    pdf = (1.0 - u_env_select) * light_at(target).select.x * ls.pdf;
   }
 #endif
   vec3 f = eval_bsdf(m, n, wo, wi);
@@ -501,7 +539,7 @@ vec3 trace_path(Ray ray) {
       radiance += throughput * environment(ray.direction) * w;
       break;
     }
-    GpuMaterial gm = materials[hit.material];
+    GpuMaterial gm = material_at(hit.material);
     vec3 p = hit.position;
     vec3 wo = -ray.direction;
     vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;

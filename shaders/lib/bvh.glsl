@@ -3,7 +3,7 @@
 // (ties broken the same way), so the renderer may use either for any scene.
 //
 // A lib file cannot declare buffers: the includer supplies the scene through the functions
-// declared below (shaders/trace.frag from its storage buffers, renderer/shader_lib.h from
+// declared below (shaders/trace_common.glsl from its table textures, renderer/shader_lib.h from
 // arrays on the CPU), defined after this file is included.
 #ifndef GLINT_BVH_GLSL
 #define GLINT_BVH_GLSL

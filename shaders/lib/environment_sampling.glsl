@@ -3,8 +3,8 @@
 // CDF per row, piecewise constant in (u, v) and proportional to the texels' filtered luminance
 // times sin(theta). Needs common.glsl and mapping.glsl.
 //
-// A lib file cannot declare buffers, so the includer defines these first (trace.frag over a
-// storage buffer, renderer/shader_lib.h over the C++ tables):
+// A lib file cannot declare buffers, so the includer defines these first (trace_common.glsl
+// over a table texture, renderer/shader_lib.h over the C++ tables):
 //   ivec2 env_distribution_size();               // (width, height) of the image
 //   float env_marginal_cdf(int i);               // i in [0, height]: 0 first, exactly 1 last
 //   float env_conditional_cdf(int row, int i);   // i in [0, width]: 0 first, exactly 1 last

@@ -125,9 +125,7 @@ QuadHit intersect_quad(Ray ray, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 uv0, ve
 // a ray parallel to it), then whether the ray passes inside the four boundary edges. The edge
 // volumes are the same edge_volume calls (same endpoints, same order) as intersect_quad's, so
 // two quads sharing an edge still leave no crack, and a ray meets a convex quad iff the four
-// have one sign (Woop et al. 2013; inclusive edges). The trace shader reads the corners for the
-// second step only after the first has found t in range: on llvmpipe the saving is those
-// storage-buffer reads, skipped when no pixel of a SIMD group needs them (bench/THROUGHPUT.md).
+// have one sign (Woop et al. 2013; inclusive edges). The second step runs only for a t in range.
 float planar_quad_plane_t(Ray ray, vec3 p0, vec3 normal, float tmin, float tmax) {
   float t = dot(p0 - ray.origin, normal) / dot(ray.direction, normal);
   return t > tmin && t < tmax ? t : NO_HIT;

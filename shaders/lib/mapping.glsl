@@ -50,9 +50,9 @@ BilinearTaps bilinear_taps(vec2 uv, ivec2 size) {
                       vec2(x - fx, y - fy));
 }
 
-// Where a texture's texels are (renderer/gpu_renderer.cpp, upload_textures): one texel buffer
-// for 8-bit textures (RGBA8 as stored) and one for float ones (RGBA32F), each texture a
-// row-major run of texels in one of them. Its layer record is (width, height, first texel,
+// Where a texture's texels are (renderer/gpu_renderer.cpp, upload_textures): one sequence of
+// texels for 8-bit textures (RGBA8 as stored) and one for float ones (RGBA32F), each texture a
+// row-major run of texels in one of them; texel_index is the position in the sequence. Its layer record is (width, height, first texel,
 // kind); 8-bit sRGB texels are decoded per tap with srgb_decode.
 const int TEXELS_8BIT_LINEAR = 0;
 const int TEXELS_8BIT_SRGB = 1;

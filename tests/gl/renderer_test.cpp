@@ -1,5 +1,6 @@
 // GL tests of the progressive renderer on small images (run serially; llvmpipe in CI).
 #include <cstdio>
+#include <stdexcept>
 
 #include <epoxy/gl.h>
 
@@ -56,6 +57,35 @@ TEST(GlRenderer, EmissiveQuadSeenDirectlyRendersItsEmission) {
       ASSERT_NEAR(img.at(x, y)[2], 0.5f, 1e-5f);
     }
   EXPECT_EQ(img.at(1, 1)[0], 0.0f);  // the corner sees the black environment
+}
+
+// The scene's tables are integer textures: a scene whose quads need more texels than a table
+// holds (16384 x GL_MAX_TEXTURE_SIZE; here an option's 100, 8 texels a quad) is refused with the
+// count and the limit, and the renderer keeps the previous scene.
+TEST(GlRenderer, ShapesBeyondTheTablesLimitAreRefused) {
+  ensure_gl_context();
+  Scene scene = empty_scene();
+  scene.materials.push_back({.name = "lamp", .color = {0, 0, 0}, .emission = {3, 2, 0.5f}});
+  const Quad panel{.name = "panel", .material = "lamp",
+                   .corners = {glm::vec3{-1, -1, 0}, glm::vec3{-1, 1, 0}, glm::vec3{1, -1, 0}, glm::vec3{1, 1, 0}}};
+  scene.quads.assign(12, panel);  // 96 texels
+  GpuRendererOptions options;
+  options.max_table_texels = 100;
+  GpuRenderer r(options);
+  r.sync(scene, 8, 8);
+  Scene large = scene;
+  large.quads.push_back(panel);  // 104 texels
+  large.materials[0].emission = {1, 1, 1};
+  try {
+    r.sync(large, 8, 8);
+    ADD_FAILURE() << "13 quads (104 texels) were accepted with a limit of 100 texels";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "quads (13) need 104 texels, more than this OpenGL driver holds (100 texels in a "
+              "table: 16384 per row, GL_MAX_TEXTURE_SIZE rows)");
+  }
+  r.trace(1);
+  EXPECT_NEAR(r.read_accumulation().at(4, 4)[0], 3.0f, 1e-5);  // the previous scene's emission
 }
 
 Scene noisy_scene() {

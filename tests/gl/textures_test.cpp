@@ -206,7 +206,7 @@ TEST(GlTextures, TexturesBeyondTheDriversLimitAreRefused) {
   scene.materials.push_back({.name = "m", .color = {0, 0, 0}, .emission = {1, 1, 1}, .emission_texture = "t"});
   scene.quads = {facing_quad("m", -3, 3, 3)};
   GpuRendererOptions options;
-  options.max_texture_buffer_texels = 100;
+  options.max_texture_texels = 100;
   GpuRenderer r(options);
   r.sync(scene, 4, 4);
   Scene large = scene;
@@ -218,7 +218,7 @@ TEST(GlTextures, TexturesBeyondTheDriversLimitAreRefused) {
     EXPECT_EQ(std::string(e.what()),
               "textures[0].path: " + (dir.path / "large.png").string() +
                   ": the textures need 256 8-bit texels, more than this OpenGL driver holds (100 "
-                  "texels in a buffer texture, GL_MAX_TEXTURE_BUFFER_SIZE)");
+                  "texels: 16384 per row, GL_MAX_TEXTURE_SIZE rows)");
   }
   r.sync(scene, 4, 4);
   r.trace(1);
