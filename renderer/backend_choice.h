@@ -5,8 +5,9 @@
 //
 // The cache is a small JSON file, $XDG_CACHE_HOME/glint/backend.json (else
 // ~/.cache/glint/backend.json), keyed by GL_VENDOR, GL_RENDERER and GL_VERSION together with a
-// digest of the trace shaders' text (a driver update or a changed path tracer times again). A cache that cannot be read or written never stops a render:
-// the choice is timed instead, and `note` says so in one line.
+// digest of the trace shaders' text (a driver update or a changed path tracer times again). A
+// cache that cannot be read or written never stops a render: the choice is timed instead, and
+// `note` says so in one line.
 #pragma once
 
 #include <filesystem>

@@ -52,9 +52,9 @@ EnvironmentDistribution build_environment_distribution(const Image& image);
 //   layout(binding = N) uniform isampler2D u_env_cdf_table;
 //   uniform ivec2 u_env_distribution_size;
 //   ivec2 env_distribution_size() { return u_env_distribution_size; }
-//   float env_marginal_cdf(int i) { return env_cdf[i]; }
+//   float env_marginal_cdf(int i) { return env_cdf(i); }  // env_cdf: the texel's float
 //   float env_conditional_cdf(int row, int i) {
-//     return env_cdf[u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i];
+//     return env_cdf(u_env_distribution_size.y + 1 + row * (u_env_distribution_size.x + 1) + i);
 //   }
 struct PackedEnvironmentDistribution {
   int width = 0;

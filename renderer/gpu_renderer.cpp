@@ -5,7 +5,6 @@
 #include <initializer_list>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <thread>
@@ -73,6 +72,36 @@ GLuint make_framebuffer(std::initializer_list<GLuint> textures) {
 // The trace pass's four targets of one ping-pong side.
 GLuint make_trace_framebuffer(const TraceTargets& t) {
   return make_framebuffer({t.accumulation, t.compensation, t.variance, t.variance_compensation});
+}
+
+// Copies `count` texels of `texel_bytes` each to texels [first, first + count) of `texture`, a
+// 2-D texture read row after row (rows of kTableWidth): a partial first row, the whole rows, a
+// partial last row.
+void upload_texel_run(GLuint texture, GLenum format, GLenum type, int64_t texel_bytes,
+                      int64_t first, int64_t count, const unsigned char* data) {
+  auto put = [&](int64_t x, int64_t y, int64_t width, int64_t height) {
+    glTextureSubImage2D(texture, 0, static_cast<GLint>(x), static_cast<GLint>(y),
+                        static_cast<GLsizei>(width), static_cast<GLsizei>(height), format, type, data);
+    data += width * height * texel_bytes;
+    first += width * height;
+    count -= width * height;
+  };
+  constexpr int64_t w = GpuRenderer::kTableWidth;
+  if (count > 0 && first % w != 0) put(first % w, first / w, std::min(count, w - first % w), 1);
+  if (count >= w) put(0, first / w, w, count / w);
+  if (count > 0) put(0, first / w, count, 1);
+}
+
+// Texels that kTableWidth x GL_MAX_TEXTURE_SIZE holds, or `option` when positive (tests); at
+// most INT_MAX (texel indices are ints in the shader).
+int64_t texel_limit(int64_t option) {
+  int64_t limit = option;
+  if (limit <= 0) {
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    limit = int64_t(GpuRenderer::kTableWidth) * max_side;
+  }
+  return std::min<int64_t>(limit, std::numeric_limits<int>::max());
 }
 
 }  // namespace
@@ -258,20 +287,9 @@ int64_t table_texels(const std::vector<T>& data) {
   return int64_t(data.size()) * (sizeof(T) % 16 == 0 ? int64_t(sizeof(T) / 16) : 1);
 }
 
-int64_t GpuRenderer::table_texel_limit() const {
-  int64_t limit = renderer_options_.max_table_texels;
-  if (limit <= 0) {
-    GLint max_side = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-    limit = int64_t(kTableWidth) * max_side;
-  }
-  // Texel indices are ints in the shader.
-  return std::min<int64_t>(limit, std::numeric_limits<int>::max());
-}
-
 template <typename T>
 void GpuRenderer::check_table_size(const std::string& what, const std::vector<T>& data) const {
-  const int64_t limit = table_texel_limit();
+  const int64_t limit = texel_limit(renderer_options_.max_table_texels);
   if (table_texels(data) > limit)
     throw std::runtime_error(what + " (" + std::to_string(data.size()) + ") need " +
                              std::to_string(table_texels(data)) +
@@ -291,18 +309,20 @@ void GpuRenderer::check_table_size(const std::string& what, const std::vector<T>
 // name never changes (a warm-up job holds the names).
 template <typename T>
 void GpuRenderer::upload_table(int k, const std::vector<T>& data) {
-  constexpr int channels = sizeof(T) % 16 == 0 ? 4 : 1;
+  constexpr bool rgba = sizeof(T) % 16 == 0;
   const int64_t rows = std::bit_ceil(
       static_cast<uint64_t>(std::max<int64_t>(1, (table_texels(data) + kTableWidth - 1) / kTableWidth)));
-  std::vector<int32_t> texels(static_cast<size_t>(rows * kTableWidth * channels), 0);
-  if (!data.empty()) std::memcpy(texels.data(), data.data(), data.size() * sizeof(T));
   GLint bound = 0;
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
   glBindTexture(GL_TEXTURE_2D, table_textures_[k]);
-  glTexImage2D(GL_TEXTURE_2D, 0, channels == 4 ? GL_RGBA32I : GL_R32I, kTableWidth,
-               static_cast<GLsizei>(rows), 0, channels == 4 ? GL_RGBA_INTEGER : GL_RED_INTEGER,
-               GL_INT, texels.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, rgba ? GL_RGBA32I : GL_R32I, kTableWidth, static_cast<GLsizei>(rows),
+               0, rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT, nullptr);
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
+  // Zeros past the data, as the empty table's one element (a lane masked off may still read it).
+  glClearTexImage(table_textures_[k], 0, rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT, nullptr);
+  upload_texel_run(table_textures_[k], rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT,
+                   rgba ? 16 : 4, 0, table_texels(data),
+                   reinterpret_cast<const unsigned char*>(data.data()));
 }
 
 void GpuRenderer::upload_geometry(const PackedScene& packed) {
@@ -320,25 +340,6 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
   uniforms_.quad_count = static_cast<int>(packed.quads.size());
   bvh_valid_ = false;  // refitted or rebuilt by sync if the BVH is used
-}
-
-// Copies `count` texels of `texel_bytes` each to texels [first, first + count) of `texture`, a
-// 2-D texture read row after row (rows of kTableWidth): a partial first row, the whole rows, a
-// partial last row.
-static void upload_texel_run(GLuint texture, GLenum type, int64_t texel_bytes, int64_t first,
-                             int64_t count, const unsigned char* data) {
-  const GLenum format = GL_RGBA;
-  auto put = [&](int64_t x, int64_t y, int64_t width, int64_t height) {
-    glTextureSubImage2D(texture, 0, static_cast<GLint>(x), static_cast<GLint>(y),
-                        static_cast<GLsizei>(width), static_cast<GLsizei>(height), format, type, data);
-    data += width * height * texel_bytes;
-    first += width * height;
-    count -= width * height;
-  };
-  constexpr int64_t w = GpuRenderer::kTableWidth;
-  if (count > 0 && first % w != 0) put(first % w, first / w, std::min(count, w - first % w), 1);
-  if (count >= w) put(0, first / w, w, count / w);
-  if (count > 0) put(0, first / w, count, 1);
 }
 
 // Texture storage. The shader filters by hand (lib/mapping.glsl), so each texture is a row-major
@@ -366,13 +367,7 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
     }
   }
   // Offsets are ints in the shader, and the driver caps a texture's rows.
-  int64_t limit = renderer_options_.max_texture_texels;
-  if (limit <= 0) {
-    GLint max_side = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-    limit = int64_t(kTableWidth) * max_side;
-  }
-  limit = std::min<int64_t>(limit, std::numeric_limits<int>::max());
+  const int64_t limit = texel_limit(renderer_options_.max_texture_texels);
   // Each file's texels once, also when several layers read them (colour and roughness).
   struct Run {
     const TextureImage* image;
@@ -424,7 +419,7 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
     for (const Run& run : runs[k]) {
       const auto* data = k ? reinterpret_cast<const unsigned char*>(run.image->linear.pixels.data())
                            : reinterpret_cast<const unsigned char*>(run.image->rgba8.data());
-      upload_texel_run(textures[k], types[k], texel_bytes[k], run.first,
+      upload_texel_run(textures[k], GL_RGBA, types[k], texel_bytes[k], run.first,
                        int64_t(run.image->width()) * run.image->height(), data);
     }
     failure = gl_error_text();

@@ -178,7 +178,6 @@ class GpuRenderer {
 
  private:
   void resize(int width, int height);
-  int64_t table_texel_limit() const;  // kTableWidth x GL_MAX_TEXTURE_SIZE, or the option's
   template <typename T>
   void check_table_size(const std::string& what, const std::vector<T>& data) const;
   template <typename T>

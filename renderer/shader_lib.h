@@ -32,8 +32,8 @@ struct EnvironmentTablesView {
 };
 inline thread_local EnvironmentTablesView environment_tables;
 
-// The scene that shaders/lib/bvh.glsl queries on the CPU (the shader reads the same arrays from its
-// table textures): the packed shapes and, for closest_hit_bvh, the hierarchy of
+// The scene that shaders/lib/bvh.glsl queries on the CPU (the shader reads the same arrays from
+// its table textures): the packed shapes and, for closest_hit_bvh, the hierarchy of
 // renderer/bvh.h. One per thread.
 struct SceneView {
   const glint::GpuSphere* spheres = nullptr;

@@ -52,8 +52,9 @@ BilinearTaps bilinear_taps(vec2 uv, ivec2 size) {
 
 // Where a texture's texels are (renderer/gpu_renderer.cpp, upload_textures): one sequence of
 // texels for 8-bit textures (RGBA8 as stored) and one for float ones (RGBA32F), each texture a
-// row-major run of texels in one of them; texel_index is the position in the sequence. Its layer record is (width, height, first texel,
-// kind); 8-bit sRGB texels are decoded per tap with srgb_decode.
+// row-major run of texels in one of them; texel_index is the position in the sequence. Its
+// layer record is (width, height, first texel, kind); 8-bit sRGB texels are decoded per tap with
+// srgb_decode.
 const int TEXELS_8BIT_LINEAR = 0;
 const int TEXELS_8BIT_SRGB = 1;
 const int TEXELS_FLOAT = 2;
