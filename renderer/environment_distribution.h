@@ -49,7 +49,7 @@ EnvironmentDistribution build_environment_distribution(const Image& image);
 //   data[(height + 1) + row * (width + 1) + i]  conditional CDF of row, i in [0, width]
 // width and height go in a uniform. trace_common.glsl then defines, before including
 // lib/environment_sampling.glsl:
-//   layout(binding = N) uniform isampler2D u_env_cdf_table;
+//   layout(binding = N) uniform isamplerBuffer u_env_cdf_table;
 //   uniform ivec2 u_env_distribution_size;
 //   ivec2 env_distribution_size() { return u_env_distribution_size; }
 //   float env_marginal_cdf(int i) { return env_cdf(i); }  // env_cdf: the texel's float

@@ -75,7 +75,7 @@ GLuint make_trace_framebuffer(const TraceTargets& t) {
 }
 
 // Copies `count` texels of `texel_bytes` each to texels [first, first + count) of `texture`, a
-// 2-D texture read row after row (rows of kTableWidth): a partial first row, the whole rows, a
+// 2-D texture read row after row (rows of kTexelRowWidth): a partial first row, the whole rows, a
 // partial last row.
 void upload_texel_run(GLuint texture, GLenum format, GLenum type, int64_t texel_bytes,
                       int64_t first, int64_t count, const unsigned char* data) {
@@ -86,20 +86,32 @@ void upload_texel_run(GLuint texture, GLenum format, GLenum type, int64_t texel_
     first += width * height;
     count -= width * height;
   };
-  constexpr int64_t w = GpuRenderer::kTableWidth;
+  constexpr int64_t w = GpuRenderer::kTexelRowWidth;
   if (count > 0 && first % w != 0) put(first % w, first / w, std::min(count, w - first % w), 1);
   if (count >= w) put(0, first / w, w, count / w);
   if (count > 0) put(0, first / w, count, 1);
 }
 
-// Texels that kTableWidth x GL_MAX_TEXTURE_SIZE holds, or `option` when positive (tests); at
-// most INT_MAX (texel indices are ints in the shader).
+// Texels that a texture of kTexelRowWidth x GL_MAX_TEXTURE_SIZE holds, or `option` when
+// positive (tests); at most INT_MAX (texel indices are ints in the shader).
 int64_t texel_limit(int64_t option) {
   int64_t limit = option;
   if (limit <= 0) {
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-    limit = int64_t(GpuRenderer::kTableWidth) * max_side;
+    limit = int64_t(GpuRenderer::kTexelRowWidth) * max_side;
+  }
+  return std::min<int64_t>(limit, std::numeric_limits<int>::max());
+}
+
+// Texels that a buffer texture holds (GL_MAX_TEXTURE_BUFFER_SIZE), or `option` when positive
+// (tests); at most INT_MAX.
+int64_t table_limit(int64_t option) {
+  int64_t limit = option;
+  if (limit <= 0) {
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    limit = max_texels;
   }
   return std::min<int64_t>(limit, std::numeric_limits<int>::max());
 }
@@ -112,12 +124,8 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   tonemap_program_ = std::make_unique<GlProgram>("fullscreen.vert", "tonemap.frag");
   estimator_ = std::make_unique<ErrorEstimator>();
   glCreateVertexArrays(1, &vao_);
-  glCreateTextures(GL_TEXTURE_2D, kTables, table_textures_);
-  for (GLuint t : table_textures_) {
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, 0);
-  }
+  glCreateTextures(GL_TEXTURE_BUFFER, kTables, table_textures_);
+  glCreateBuffers(kTables, table_buffers_);
   llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
   // Every table is bound for every pass: never without storage, even before a scene or a BVH
   // exists.
@@ -135,6 +143,7 @@ GpuRenderer::~GpuRenderer() {
   estimator_.reset();
   resize(0, 0);
   glDeleteTextures(kTables, table_textures_);
+  glDeleteBuffers(kTables, table_buffers_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   glDeleteTextures(2, texel_textures_);
@@ -289,40 +298,33 @@ int64_t table_texels(const std::vector<T>& data) {
 
 template <typename T>
 void GpuRenderer::check_table_size(const std::string& what, const std::vector<T>& data) const {
-  const int64_t limit = texel_limit(renderer_options_.max_table_texels);
+  const int64_t limit = table_limit(renderer_options_.max_table_texels);
   if (table_texels(data) > limit)
     throw std::runtime_error(what + " (" + std::to_string(data.size()) + ") need " +
                              std::to_string(table_texels(data)) +
                              " texels, more than this OpenGL driver holds (" +
-                             std::to_string(limit) + " texels in a table: " +
-                             std::to_string(kTableWidth) + " per row, GL_MAX_TEXTURE_SIZE rows)");
+                             std::to_string(limit) +
+                             " texels in a table: GL_MAX_TEXTURE_BUFFER_SIZE)");
 }
 
-// Uploads `data` into table k, the integer texture the trace shader reads it from
-// (shaders/trace_common.glsl): rows of kTableWidth texels, as many rows as a power of two needs
-// (at least one). Why a 2-D texture and a power of two, not a buffer texture of the exact size:
-// llvmpipe keys its compiled shaders by each bound texture's sampler state and by whether its
-// sides are powers of two (gallivm's lp_sampler_static_texture_state), and Mesa leaves the
-// sampler state of a buffer texture's unit as the previous draw set it. Either would make a
-// draw compile the program again, on the calling thread, after the worker's warm-up draw
-// (program_worker.h) had compiled it in another state. The texture's storage is mutable, so its
-// name never changes (a warm-up job holds the names).
+// Uploads `data` into table k, the integer buffer texture the trace shader reads it from
+// (shaders/trace_common.glsl). The buffer is a power of two of bytes, at least 64 KiB, zeros past
+// the data: llvmpipe keys its compiled shaders by whether each bound texture's size is a power
+// of two, and by bits 8 to 15 of a buffer texture's byte size (which alias a 2-D texture's last
+// mipmap level in gallium's sampler view), so that with any other size a draw could compile the
+// program again, on the calling thread, after the worker's warm-up draw (program_worker.h) had
+// compiled it for another size. The zeros also stand for the empty table's one element (a lane
+// masked off may still read it). The texture and the buffer keep their names (a warm-up job
+// holds them).
 template <typename T>
 void GpuRenderer::upload_table(int k, const std::vector<T>& data) {
   constexpr bool rgba = sizeof(T) % 16 == 0;
-  const int64_t rows = std::bit_ceil(
-      static_cast<uint64_t>(std::max<int64_t>(1, (table_texels(data) + kTableWidth - 1) / kTableWidth)));
-  GLint bound = 0;
-  glGetIntegerv(GL_TEXTURE_BINDING_2D, &bound);
-  glBindTexture(GL_TEXTURE_2D, table_textures_[k]);
-  glTexImage2D(GL_TEXTURE_2D, 0, rgba ? GL_RGBA32I : GL_R32I, kTableWidth, static_cast<GLsizei>(rows),
-               0, rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT, nullptr);
-  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(bound));
-  // Zeros past the data, as the empty table's one element (a lane masked off may still read it).
-  glClearTexImage(table_textures_[k], 0, rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT, nullptr);
-  upload_texel_run(table_textures_[k], rgba ? GL_RGBA_INTEGER : GL_RED_INTEGER, GL_INT,
-                   rgba ? 16 : 4, 0, table_texels(data),
-                   reinterpret_cast<const unsigned char*>(data.data()));
+  const int64_t bytes = int64_t(data.size()) * int64_t(sizeof(T));
+  const int64_t size = std::max<int64_t>(int64_t(1) << 16, std::bit_ceil(static_cast<uint64_t>(bytes)));
+  glNamedBufferData(table_buffers_[k], static_cast<GLsizeiptr>(size), nullptr, GL_STATIC_DRAW);
+  glClearNamedBufferData(table_buffers_[k], GL_R32I, GL_RED_INTEGER, GL_INT, nullptr);
+  if (bytes > 0) glNamedBufferSubData(table_buffers_[k], 0, static_cast<GLsizeiptr>(bytes), data.data());
+  glTextureBuffer(table_textures_[k], rgba ? GL_RGBA32I : GL_R32I, table_buffers_[k]);
 }
 
 void GpuRenderer::upload_geometry(const PackedScene& packed) {
@@ -343,8 +345,9 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
 }
 
 // Texture storage. The shader filters by hand (lib/mapping.glsl), so each texture is a row-major
-// run of texels in one long sequence, stored row after row in a 2-D texture of kTableWidth
-// texels a row (2-D, not a buffer texture, for the reason upload_table gives): memory is the
+// run of texels in one long sequence, stored row after row in a 2-D texture of kTexelRowWidth
+// texels a row (2-D, not a buffer texture: that may hold as few as 2^16 texels, 2^27 on
+// llvmpipe, and a set of textures can take 2^28 or more): memory is the
 // sum of the real sizes (a texture array takes the largest width times the largest height for
 // every layer, 8 GiB for a 16384x1 and a 1x16384 texture), the count is bounded only by the
 // layer records' table (an array by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit
@@ -389,7 +392,7 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
         throw ImageError(json_path(layers[i]) + ": " + files[i].string() + ": the textures need " +
                          std::to_string(texels[kind]) + (kind ? " float" : " 8-bit") +
                          " texels, more than this OpenGL driver holds (" + std::to_string(limit) +
-                         " texels: " + std::to_string(kTableWidth) + " per row, GL_MAX_TEXTURE_SIZE rows)");
+                         " texels: " + std::to_string(kTexelRowWidth) + " per row, GL_MAX_TEXTURE_SIZE rows)");
     }
     const int format = kind ? gpu::TEXELS_FLOAT
                             : layers[i].encoding == ColorEncoding::srgb ? gpu::TEXELS_8BIT_SRGB
@@ -406,13 +409,13 @@ void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureL
   std::string failure;
   for (int k = 0; k < 2 && failure.empty(); ++k) {
     // Never empty: a texture needs storage to be complete.
-    const int64_t rows = std::max<int64_t>(1, (texels[k] + kTableWidth - 1) / kTableWidth);
-    glTextureStorage2D(textures[k], 1, formats[k], kTableWidth, static_cast<GLsizei>(rows));
+    const int64_t rows = std::max<int64_t>(1, (texels[k] + kTexelRowWidth - 1) / kTexelRowWidth);
+    glTextureStorage2D(textures[k], 1, formats[k], kTexelRowWidth, static_cast<GLsizei>(rows));
     glTextureParameteri(textures[k], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(textures[k], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     failure = gl_error_text();
     if (!failure.empty()) {
-      failure = "cannot allocate " + bytes_text(double(rows) * kTableWidth * texel_bytes[k]) +
+      failure = "cannot allocate " + bytes_text(double(rows) * kTexelRowWidth * texel_bytes[k]) +
                 " for the " + (k ? "float" : "8-bit") + " textures (" + failure + ")";
       break;
     }

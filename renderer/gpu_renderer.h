@@ -56,18 +56,18 @@ struct GpuRendererOptions {
   // driver's shader cache has never seen the program and its compile is really timed.
   std::string extra_defines;
   // Texels the textures of one kind (8-bit, float) may hold together; 0 for the driver's limit
-  // (kTableWidth x GL_MAX_TEXTURE_SIZE). Tests set a small one to reach the refusal.
+  // (kTexelRowWidth x GL_MAX_TEXTURE_SIZE). Tests set a small one to reach the refusal.
   int64_t max_texture_texels = 0;
   // Texels a scene table may hold (spheres take 2 each, quads 8); 0 for the driver's limit
-  // (kTableWidth x GL_MAX_TEXTURE_SIZE). Tests set a small one to reach the refusal.
+  // (GL_MAX_TEXTURE_BUFFER_SIZE). Tests set a small one to reach the refusal.
   int64_t max_table_texels = 0;
 };
 
 class GpuRenderer {
  public:
-  // Texels per row of the integer and colour textures that hold the scene's tables and the
-  // textures' texels (TABLE_ROW_SHIFT in shaders/trace_common.glsl).
-  static constexpr int kTableWidth = 16384;
+  // Texels per row of the colour textures that hold the textures' texels (TABLE_ROW_SHIFT in
+  // shaders/trace_common.glsl).
+  static constexpr int kTexelRowWidth = 16384;
   // Compiles the generic trace program and the tonemap program; throws std::runtime_error
   // with the driver's log. Programs specialised to a scene's ShaderFeatures are compiled
   // later, when a scene needs them (see trace()).
@@ -253,12 +253,13 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};  // each draws into the four targets of side i
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  // The scene's tables, read by the trace shader from integer textures (upload_table): spheres,
+  // The scene's tables, read by the trace shader from integer buffer textures (upload_table): spheres,
   // quads, materials, texture layer records, lights, environment-sampling tables, BVH nodes,
   // BVH primitives; table k on texture unit kTableUnit + k (shaders/trace_common.glsl).
   static constexpr int kTables = 8;
   static constexpr GLuint kTableUnit = 7;
   GLuint table_textures_[kTables] = {};
+  GLuint table_buffers_[kTables] = {};  // their storage
   // The texels of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F.
   GLuint texel_textures_[2] = {0, 0};
   GLuint environment_texture_ = 0;

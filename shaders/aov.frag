@@ -62,6 +62,7 @@ void main() {
   vec3 albedo_sum = vec3(0.0);
   vec3 normal_sum = vec3(0.0);
   float count = 0.0;
+  if (u_read_every_sampler) albedo_sum += every_sampler().rgb;
   for (int s = 0; s < u_samples_per_pass; ++s) {
     g_rng = rng_seed(uint(pixel.x), row, u_samples_before + uint(s), u_seed);
     g_sample_index = u_samples_before + uint(s);

@@ -4,12 +4,13 @@
 // Path tracing pass as a fragment shader, one fragment per pixel: reads the previous
 // accumulation, variance and their compensations and writes the next ones (ping-pong render
 // targets).
-#include "trace_common.glsl"
-
+// Declared before the library's samplers: the first sampler slots (trace_common.glsl says why
+// the order matters).
 layout(binding = 0) uniform sampler2D u_previous;
 layout(binding = 3) uniform sampler2D u_previous_compensation;
 layout(binding = 5) uniform sampler2D u_previous_variance;
 layout(binding = 6) uniform sampler2D u_previous_variance_compensation;
+#include "trace_common.glsl"
 
 layout(location = 0) out vec4 out_accumulation;
 layout(location = 1) out vec4 out_compensation;

@@ -55,29 +55,53 @@ struct GpuLight {
   vec4 select;   // x: pdf of picking it, y: cdf
 };
 
-// The scene's tables (renderer/gpu_scene.h, renderer/bvh.h, renderer/environment_distribution.h):
-// their std430 bytes in integer textures (RGBA32I, 16 bytes a texel, or R32I for the lists of
-// ints and floats; a float is intBitsToFloat of its texel, every bit kept), element after element
-// in rows of 2^TABLE_ROW_SHIFT texels; texture unit 7 + k holds the renderer's table k
-// (GpuRenderer::upload_table says why 2-D). Why not storage buffers: on llvmpipe a
-// storage-buffer read is a loop over the SIMD group's lanes with a branch per lane and
-// component, a texel fetch one gather (bench/THROUGHPUT.md).
-layout(binding = 7) uniform isampler2D u_sphere_table;          // GpuSphere: 2 texels
-layout(binding = 8) uniform isampler2D u_quad_table;            // GpuQuad: 8 texels
-layout(binding = 9) uniform isampler2D u_material_table;        // GpuMaterial: 4 texels
-layout(binding = 10) uniform isampler2D u_texture_layer_table;  // ivec4, see lib/mapping.glsl
-layout(binding = 11) uniform isampler2D u_light_table;          // GpuLight: 2 texels
-layout(binding = 12) uniform isampler2D u_env_cdf_table;        // float (R32I)
-// The BVH of renderer/bvh.h (bound only when u_use_bvh).
-layout(binding = 13) uniform isampler2D u_bvh_node_table;       // BvhNode: 2 texels
-layout(binding = 14) uniform isampler2D u_bvh_primitive_table;  // int (R32I)
-
-const int TABLE_ROW_SHIFT = 14;  // 16384 texels a row (GpuRenderer::kTableWidth)
-ivec2 table_position(int texel) {
+// The samplers, in a fixed order: each is given the next sampler slot in declaration order
+// (after the entry point's own), and every one is read in every program (every_sampler, behind a
+// uniform that is never set), so that a slot holds the same sampler in every specialised
+// program. The reason is llvmpipe: it keys a compiled shader by the sampler state in each slot
+// it reads, and Mesa leaves a buffer texture's slot as the last draw of any program set it. The
+// buffer textures come last, on slots that no 2-D sampler of any program takes, so that their
+// state is the same in the editor's context and in the worker's (program_worker.h), and the
+// worker's warm-up draw compiles what the editor's first draw needs.
+//
+// The textures' texels, row after row (lib/mapping.glsl's texel_index is the position).
+layout(binding = 2) uniform sampler2D u_environment;
+layout(binding = 1) uniform sampler2D u_texels_8bit;   // RGBA8, as stored
+layout(binding = 4) uniform sampler2D u_texels_float;  // RGBA32F
+const int TABLE_ROW_SHIFT = 14;  // 16384 texels a row (GpuRenderer::kTexelRowWidth)
+ivec2 texel_position(int texel) {
   return ivec2(texel & ((1 << TABLE_ROW_SHIFT) - 1), texel >> TABLE_ROW_SHIFT);
 }
-ivec4 table_texel(isampler2D table, int texel) { return texelFetch(table, table_position(texel), 0); }
-vec4 table_vec4(isampler2D table, int texel) { return intBitsToFloat(table_texel(table, texel)); }
+
+// The scene's tables (renderer/gpu_scene.h, renderer/bvh.h, renderer/environment_distribution.h):
+// their std430 bytes in integer buffer textures (RGBA32I, 16 bytes a texel, or R32I for the
+// lists of ints and floats; a float is intBitsToFloat of its texel, every bit kept); texture
+// unit 7 + k holds the renderer's table k (GpuRenderer::upload_table). Why not storage buffers:
+// on llvmpipe a storage-buffer read is a loop over the SIMD group's lanes with a branch per lane
+// and component, a texel fetch one gather, and a buffer texture's fetch is cheaper than a 2-D
+// texture's (bench/THROUGHPUT.md).
+layout(binding = 7) uniform isamplerBuffer u_sphere_table;          // GpuSphere: 2 texels
+layout(binding = 8) uniform isamplerBuffer u_quad_table;            // GpuQuad: 8 texels
+layout(binding = 9) uniform isamplerBuffer u_material_table;        // GpuMaterial: 4 texels
+layout(binding = 10) uniform isamplerBuffer u_texture_layer_table;  // ivec4, see lib/mapping.glsl
+layout(binding = 11) uniform isamplerBuffer u_light_table;          // GpuLight: 2 texels
+layout(binding = 12) uniform isamplerBuffer u_env_cdf_table;        // float (R32I)
+layout(binding = 13) uniform isamplerBuffer u_bvh_node_table;       // BvhNode: 2 texels
+layout(binding = 14) uniform isamplerBuffer u_bvh_primitive_table;  // int (R32I)
+
+ivec4 table_texel(isamplerBuffer table, int texel) { return texelFetch(table, texel); }
+vec4 table_vec4(isamplerBuffer table, int texel) { return intBitsToFloat(table_texel(table, texel)); }
+
+// Never set (false): its only use is that every sampler above is read in every program.
+uniform bool u_read_every_sampler;
+vec4 every_sampler() {
+  return texelFetch(u_environment, ivec2(0), 0) + texelFetch(u_texels_8bit, ivec2(0), 0) +
+         texelFetch(u_texels_float, ivec2(0), 0) +
+         vec4(texelFetch(u_sphere_table, 0) + texelFetch(u_quad_table, 0) +
+              texelFetch(u_material_table, 0) + texelFetch(u_texture_layer_table, 0) +
+              texelFetch(u_light_table, 0) + texelFetch(u_env_cdf_table, 0) +
+              texelFetch(u_bvh_node_table, 0) + texelFetch(u_bvh_primitive_table, 0));
+}
 // Element i of a table; the compiler drops the fetches of fields that are not used.
 GpuSphere sphere_at(int i) {
   return GpuSphere(table_vec4(u_sphere_table, 2 * i), table_texel(u_sphere_table, 2 * i + 1));
@@ -98,10 +122,6 @@ GpuLight light_at(int i) {
   return GpuLight(table_texel(u_light_table, 2 * i), table_vec4(u_light_table, 2 * i + 1));
 }
 
-// The textures' texels, in rows as the tables (lib/mapping.glsl's texel_index is the position).
-layout(binding = 1) uniform sampler2D u_texels_8bit;   // RGBA8, as stored
-layout(binding = 4) uniform sampler2D u_texels_float;  // RGBA32F
-layout(binding = 2) uniform sampler2D u_environment;
 
 uniform ivec2 u_resolution;
 uniform uint u_samples_before;  // samples already in the accumulation
@@ -193,8 +213,8 @@ vec2 sample_2d(uint dimension) {
 #if !defined(GLINT_NO_TEXTURES)
 vec4 fetch_texel(ivec4 layer, int x, int y) {
   int i = texel_index(layer, x, y);
-  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, table_position(i), 0);
-  vec4 t = texelFetch(u_texels_8bit, table_position(i), 0);
+  if (layer.w == TEXELS_FLOAT) return texelFetch(u_texels_float, texel_position(i), 0);
+  vec4 t = texelFetch(u_texels_8bit, texel_position(i), 0);
   if (layer.w == TEXELS_8BIT_SRGB) t.rgb = vec3(srgb_decode(t.r), srgb_decode(t.g), srgb_decode(t.b));
   return t;
 }
@@ -627,6 +647,7 @@ bool adaptive_pixel_active(vec4 accumulation, vec4 compensation, vec3 variance) 
 // read and write it. With adaptive sampling a waiting pixel keeps its state.
 void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
                  inout vec3 variance, inout vec3 variance_compensation) {
+  if (u_read_every_sampler) accumulation += every_sampler();
   if (!adaptive_pixel_active(accumulation, compensation, variance)) return;
   CameraFrame cam = CameraFrame(u_cam_origin, u_cam_right, u_cam_up, u_cam_forward,
                                 u_cam_tan_half_vfov, u_cam_aspect, u_cam_aperture, u_cam_focus);

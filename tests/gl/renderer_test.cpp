@@ -59,8 +59,8 @@ TEST(GlRenderer, EmissiveQuadSeenDirectlyRendersItsEmission) {
   EXPECT_EQ(img.at(1, 1)[0], 0.0f);  // the corner sees the black environment
 }
 
-// The scene's tables are integer textures: a scene whose quads need more texels than a table
-// holds (16384 x GL_MAX_TEXTURE_SIZE; here an option's 100, 8 texels a quad) is refused with the
+// The scene's tables are integer buffer textures: a scene whose quads need more texels than a
+// table holds (GL_MAX_TEXTURE_BUFFER_SIZE; here an option's 100, 8 texels a quad) is refused with the
 // count and the limit, and the renderer keeps the previous scene.
 TEST(GlRenderer, ShapesBeyondTheTablesLimitAreRefused) {
   ensure_gl_context();
@@ -82,7 +82,7 @@ TEST(GlRenderer, ShapesBeyondTheTablesLimitAreRefused) {
   } catch (const std::runtime_error& e) {
     EXPECT_EQ(std::string(e.what()),
               "quads (13) need 104 texels, more than this OpenGL driver holds (100 texels in a "
-              "table: 16384 per row, GL_MAX_TEXTURE_SIZE rows)");
+              "table: GL_MAX_TEXTURE_BUFFER_SIZE)");
   }
   r.trace(1);
   EXPECT_NEAR(r.read_accumulation().at(4, 4)[0], 3.0f, 1e-5);  // the previous scene's emission
