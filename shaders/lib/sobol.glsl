@@ -11,16 +11,20 @@ uint sobol_dimension0(uint index) { return bitfieldReverse(index); }
 
 // Sobol dimension 1: primitive polynomial x + 1 (degree s = 1, m_1 = 1). The recurrence of
 // Bratley and Fox, m_k = 2 m_(k-1) xor m_(k-1), with v_k = m_k / 2^k in 32-bit fixed point
-// (V_k = m_k << (32 - k)), is V_k = V_(k-1) xor (V_(k-1) >> 1), starting from V_1 = 2^31:
-// the direction numbers are generated here, one per index bit.
+// (V_k = m_k << (32 - k)), is V_k = V_(k-1) xor (V_(k-1) >> 1), starting from V_1 = 2^31. Its
+// generator matrix is Pascal's triangle mod 2: bit 31 - r of V_(j+1) is C(j, r) mod 2, which
+// by Lucas's theorem is 1 exactly when the bits of r are a subset of those of j. So bit 31 - r
+// of the point is the xor of the index bits j that contain r: the superset xor transform of
+// the index, five shift-and-xor steps (one per bit of the bit position), bit-reversed. No
+// loop: a loop over the index bits ran 32 times for a scrambled index, in every lane.
 uint sobol_dimension1(uint index) {
-  uint result = 0u;
-  uint v = 0x80000000u;
-  for (uint i = index; i != 0u; i >>= 1u) {
-    if ((i & 1u) != 0u) result ^= v;
-    v ^= v >> 1u;
-  }
-  return result;
+  uint y = index;
+  y ^= (y >> 1u) & 0x55555555u;
+  y ^= (y >> 2u) & 0x33333333u;
+  y ^= (y >> 4u) & 0x0f0f0f0fu;
+  y ^= (y >> 8u) & 0x00ff00ffu;
+  y ^= (y >> 16u) & 0x0000ffffu;
+  return bitfieldReverse(y);
 }
 
 // Sobol dimensions 2 and 3 with the direction numbers of Joe and Kuo ("Constructing Sobol
@@ -29,12 +33,14 @@ uint sobol_dimension1(uint index) {
 // m = 1, 3), dimension 3 has x^3 + x + 1 (s = 3, a = 1, m = 1, 3, 1). Bratley and Fox's
 // recurrence m_k = 2 a_1 m_(k-1) xor ... xor 2^s m_(k-s) xor m_(k-s) in 32-bit fixed point
 // (V_k = m_k << (32 - k)) is V_k = V_(k-1) xor V_(k-2) xor (V_(k-2) >> 2) for dimension 2 and
-// V_k = V_(k-2) xor V_(k-3) xor (V_(k-3) >> 3) for dimension 3.
+// V_k = V_(k-2) xor V_(k-3) xor (V_(k-3) >> 3) for dimension 3. The loops have a constant
+// count and no branch (V_k masked by index bit k - 1), so that the compiler unrolls them and
+// folds the direction numbers into constants.
 uint sobol_dimension2(uint index) {
   uint result = 0u;
   uint a = 0x80000000u, b = 0xc0000000u;  // V_k and V_(k+1), from k = 1
-  for (uint i = index; i != 0u; i >>= 1u) {
-    if ((i & 1u) != 0u) result ^= a;
+  for (int bit = 0; bit < 32; ++bit) {
+    result ^= a & (0u - ((index >> uint(bit)) & 1u));
     uint next = b ^ a ^ (a >> 2u);
     a = b;
     b = next;
@@ -44,8 +50,8 @@ uint sobol_dimension2(uint index) {
 uint sobol_dimension3(uint index) {
   uint result = 0u;
   uint a = 0x80000000u, b = 0xc0000000u, c = 0x20000000u;  // V_k, V_(k+1), V_(k+2)
-  for (uint i = index; i != 0u; i >>= 1u) {
-    if ((i & 1u) != 0u) result ^= a;
+  for (int bit = 0; bit < 32; ++bit) {
+    result ^= a & (0u - ((index >> uint(bit)) & 1u));
     uint next = b ^ a ^ (a >> 3u);
     a = b;
     b = c;
