@@ -65,7 +65,7 @@ struct GpuRendererOptions {
 
 class GpuRenderer {
  public:
-  // Texels per row of the colour textures that hold the textures' texels (TABLE_ROW_SHIFT in
+  // Texels per row of the colour textures that hold the textures' texels (TEXEL_ROW_SHIFT in
   // shaders/trace_common.glsl).
   static constexpr int kTexelRowWidth = 16384;
   // Compiles the generic trace program and the tonemap program; throws std::runtime_error

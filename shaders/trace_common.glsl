@@ -63,14 +63,13 @@ struct GpuLight {
 // buffer textures come last, on slots that no 2-D sampler of any program takes, so that their
 // state is the same in the editor's context and in the worker's (program_worker.h), and the
 // worker's warm-up draw compiles what the editor's first draw needs.
-//
-// The textures' texels, row after row (lib/mapping.glsl's texel_index is the position).
 layout(binding = 2) uniform sampler2D u_environment;
+// The textures' texels, row after row (lib/mapping.glsl's texel_index is the position).
 layout(binding = 1) uniform sampler2D u_texels_8bit;   // RGBA8, as stored
 layout(binding = 4) uniform sampler2D u_texels_float;  // RGBA32F
-const int TABLE_ROW_SHIFT = 14;  // 16384 texels a row (GpuRenderer::kTexelRowWidth)
+const int TEXEL_ROW_SHIFT = 14;  // 16384 texels a row (GpuRenderer::kTexelRowWidth)
 ivec2 texel_position(int texel) {
-  return ivec2(texel & ((1 << TABLE_ROW_SHIFT) - 1), texel >> TABLE_ROW_SHIFT);
+  return ivec2(texel & ((1 << TEXEL_ROW_SHIFT) - 1), texel >> TEXEL_ROW_SHIFT);
 }
 
 // The scene's tables (renderer/gpu_scene.h, renderer/bvh.h, renderer/environment_distribution.h):
@@ -352,8 +351,10 @@ SceneHit intersect_scene(Ray ray) {
 // Coverage pass-throughs allowed per path: a stack of cut-out surfaces deeper than this
 // is treated as opaque at the last one.
 const int MAX_PASS_THROUGH = 64;
-// Russian roulette starts after this many bounces (the first ones carry most of the light).
-const int ROULETTE_START = 3;
+// Russian roulette starts after this many bounces (the first ones carry most of the light), as
+// Mitsuba 3's rr_depth: after 3, it lost 1.2-1.4x in efficiency on the bench scenes
+// (bench/THROUGHPUT.md).
+const int ROULETTE_START = 5;
 
 vec3 material_emission(GpuMaterial gm, vec2 uv) {
   return gm.emission.rgb * texture_lookup(gm.layers.y, uv).rgb;
@@ -547,6 +548,10 @@ vec3 trace_path(Ray ray) {
   vec3 last_p = ray.origin;
   float last_pdf = 0.0;
   bool last_delta = true;
+  // The product of eta^2 over the refractions so far: a refracted ray's weight carries 1 / eta^2
+  // (lib/dielectric.glsl), which the roulette undoes, so that a path inside glass is not killed
+  // for a scale it loses again on the way out (pbrt-v4's etaScale; Mitsuba 3 does the same).
+  float eta_scale = 1.0;
   for (;;) {
     SceneHit hit = intersect_scene(ray);
     if (hit.material < 0) {
@@ -606,6 +611,9 @@ vec3 trace_path(Ray ray) {
     // (A refractive surface bends the ray and blocks shadow rays: its delta lobes are vertices
     // with last_delta, so the light they find has weight 1.)
     ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
+#if !defined(GLINT_NO_REFRACTIVE)
+    if (m.type == MATERIAL_REFRACTIVE && dot(s.wi, n) < 0.0) eta_scale *= m.ior * m.ior;
+#endif
     if (!(s.delta && dot(s.wi, n) < 0.0 && m.type == MATERIAL_TRANSPARENT)) {
       last_p = ray.origin;
       last_pdf = s.pdf;
@@ -613,8 +621,8 @@ vec3 trace_path(Ray ray) {
     }
     ++bounces;
     if (u_russian_roulette && bounces >= ROULETTE_START) {
-      // Survive with probability max(throughput) (at most 1); survivors carry 1/q more.
-      float q = min(1.0, max_component(throughput));
+      // Survive with probability max(throughput) eta_scale (at most 1); survivors carry 1/q more.
+      float q = min(1.0, max_component(throughput) * eta_scale);
       if (rand() >= q) break;
       throughput /= q;
     }
