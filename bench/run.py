@@ -531,7 +531,8 @@ DIFFERENCES = """\
   Mitsuba's `thindielectric` sums the inter-reflections with exact Fresnel), rough or coloured
   metals (Schlick against complex-IOR Fresnel; Glint's separable Smith G), textures and coverage.
 - **Sampling, not the model:** both sample lights directly (next-event estimation with MIS)
-  and use Russian roulette (Mitsuba from depth 5, Glint after 3 bounces). Mitsuba samples an
+  and use Russian roulette (Mitsuba from depth 5, Glint after 5 bounces; both scale the survival
+  probability by the eta^2 of the refractions passed). Mitsuba samples an
   emitting sphere by its visible cap as Glint does and a quad by area; both are unbiased for
   these scenes; they change the noise, which is what the equal-time ratio measures.
 - **Camera and film.** Both use a box pixel filter (Glint: uniform jitter inside the pixel),
