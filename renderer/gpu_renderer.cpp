@@ -347,13 +347,13 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
 // Texture storage. The shader filters by hand (lib/mapping.glsl), so each texture is a row-major
 // run of texels in one long sequence, stored row after row in a 2-D texture of kTexelRowWidth
 // texels a row (2-D, not a buffer texture: that may hold as few as 2^16 texels, 2^27 on
-// llvmpipe, and a set of textures can take 2^28 or more): memory is the
-// sum of the real sizes (a texture array takes the largest width times the largest height for
-// every layer, 8 GiB for a 16384x1 and a 1x16384 texture), the count is bounded only by the
-// layer records' table (an array by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit
-// textures keep 4 bytes a texel. There are two sequences because a texture has one format
-// (RGBA8, RGBA32F). An atlas would need packing and would still cap a side; arrays per size
-// class would need a sampler per class.
+// llvmpipe, and 768 MiB of 8-bit texels are more than 2^27). Memory is the sum of the real
+// sizes (a texture array takes the largest width times the largest height for every layer,
+// 8 GiB for a 16384x1 and a 1x16384 texture), the count is bounded only by the layer records'
+// table (an array by GL_MAX_ARRAY_TEXTURE_LAYERS, 2048 on llvmpipe), and 8-bit textures keep 4
+// bytes a texel. There are two sequences because a texture has one format (RGBA8, RGBA32F). An
+// atlas would need packing and would still cap a side; arrays per size class would need a
+// sampler per class.
 void GpuRenderer::upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers) {
   auto json_path = [](const TextureLayer& layer) {
     return "textures[" + std::to_string(layer.texture) + "].path";

@@ -253,9 +253,9 @@ class GpuRenderer {
   GLuint accumulation_fbo_[2] = {0, 0};  // each draws into the four targets of side i
   GLuint display_texture_ = 0;
   GLuint display_fbo_ = 0;
-  // The scene's tables, read by the trace shader from integer buffer textures (upload_table): spheres,
-  // quads, materials, texture layer records, lights, environment-sampling tables, BVH nodes,
-  // BVH primitives; table k on texture unit kTableUnit + k (shaders/trace_common.glsl).
+  // The scene's tables, read by the trace shader from integer buffer textures (upload_table):
+  // spheres, quads, materials, texture layer records, lights, environment-sampling tables, BVH
+  // nodes, BVH primitives; table k on texture unit kTableUnit + k (shaders/trace_common.glsl).
   static constexpr int kTables = 8;
   static constexpr GLuint kTableUnit = 7;
   GLuint table_textures_[kTables] = {};

@@ -89,7 +89,9 @@ layout(binding = 13) uniform isamplerBuffer u_bvh_node_table;       // BvhNode: 
 layout(binding = 14) uniform isamplerBuffer u_bvh_primitive_table;  // int (R32I)
 
 ivec4 table_texel(isamplerBuffer table, int texel) { return texelFetch(table, texel); }
-vec4 table_vec4(isamplerBuffer table, int texel) { return intBitsToFloat(table_texel(table, texel)); }
+vec4 table_vec4(isamplerBuffer table, int texel) {
+  return intBitsToFloat(table_texel(table, texel));
+}
 
 // Never set (false): its only use is that every sampler above is read in every program.
 uniform bool u_read_every_sampler;
@@ -120,7 +122,6 @@ GpuMaterial material_at(int i) {
 GpuLight light_at(int i) {
   return GpuLight(table_texel(u_light_table, 2 * i), table_vec4(u_light_table, 2 * i + 1));
 }
-
 
 uniform ivec2 u_resolution;
 uniform uint u_samples_before;  // samples already in the accumulation
@@ -352,8 +353,7 @@ SceneHit intersect_scene(Ray ray) {
 // is treated as opaque at the last one.
 const int MAX_PASS_THROUGH = 64;
 // Russian roulette starts after this many bounces (the first ones carry most of the light), as
-// Mitsuba 3's rr_depth: after 3, it lost 1.2-1.4x in efficiency on the bench scenes
-// (bench/THROUGHPUT.md).
+// Mitsuba 3's rr_depth; bench/THROUGHPUT.md compares it with an earlier start.
 const int ROULETTE_START = 5;
 
 vec3 material_emission(GpuMaterial gm, vec2 uv) {

@@ -60,8 +60,8 @@ TEST(GlRenderer, EmissiveQuadSeenDirectlyRendersItsEmission) {
 }
 
 // The scene's tables are integer buffer textures: a scene whose quads need more texels than a
-// table holds (GL_MAX_TEXTURE_BUFFER_SIZE; here an option's 100, 8 texels a quad) is refused with the
-// count and the limit, and the renderer keeps the previous scene.
+// table holds (GL_MAX_TEXTURE_BUFFER_SIZE; here an option's 100, 8 texels a quad) is refused
+// with the count and the limit, and the renderer keeps the previous scene.
 TEST(GlRenderer, ShapesBeyondTheTablesLimitAreRefused) {
   ensure_gl_context();
   Scene scene = empty_scene();
