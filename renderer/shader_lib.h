@@ -72,7 +72,7 @@ int scene_sphere_count() { return scene_view.sphere_count; }
 int scene_quad_count() { return scene_view.quad_count; }
 float scene_sphere_hit(int i, Ray ray, float tmax) {
   vec4 s = scene_view.spheres[i].center_radius;
-  return intersect_sphere(ray, vec3(s), s.w, 0.0f, tmax);
+  return intersect_unit_sphere(ray, vec3(s), s.w, 0.0f, tmax);
 }
 float scene_quad_hit(int i, Ray ray, float tmax) {
   const glint::GpuQuad& q = scene_view.quads[i];

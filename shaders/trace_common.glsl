@@ -268,7 +268,7 @@ int scene_sphere_count() { return u_sphere_count; }
 int scene_quad_count() { return u_quad_count; }
 float scene_sphere_hit(int i, Ray ray, float tmax) {
   vec4 s = sphere_at(i).center_radius;
-  return intersect_sphere(ray, s.xyz, s.w, 0.0, tmax);
+  return intersect_unit_sphere(ray, s.xyz, s.w, 0.0, tmax);
 }
 float scene_quad_hit(int i, Ray ray, float tmax) {
 #if defined(GLINT_NO_GENERAL_QUADS)

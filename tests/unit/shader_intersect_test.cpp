@@ -105,6 +105,64 @@ TYPED_TEST(ShaderIntersect, TangentRaysAndMisses) {
   }
 }
 
+// intersect_unit_sphere, which the trace shader uses (its directions are unit), against the
+// general test on unit directions: rays from outside aimed inside the silhouette, rays from
+// inside, and lines passing 1.001 to 3 radii from the centre. Both hit or both miss, and the
+// hits agree to the rounding the two forms carry (64 eps of |o - c| + r, as above); the unit
+// form's own near hit lies on the sphere to that tolerance.
+TYPED_TEST(ShaderIntersect, UnitSphereTestAgreesWithTheGeneralOneOnUnitDirections) {
+  using L = TypeParam;
+  using R = typename L::Real;
+  const R inf = std::numeric_limits<R>::infinity();
+  EXPECT_EQ(L::intersect_unit_sphere(L::ray({0, 0, -5}, {0, 0, 1}), L::v3(0, 0, 0), R(1), R(0), inf), R(4));
+  EXPECT_EQ(L::intersect_unit_sphere(L::ray({1, 0, -5}, {0, 0, 1}), L::v3(0, 0, 0), R(1), R(0), inf), R(5));
+  EXPECT_EQ(L::intersect_unit_sphere(L::ray({0, 0, -5}, {0, 0, 1}), L::v3(0, 0, 0), R(1), R(4.5), inf), R(6));
+  EXPECT_EQ(L::intersect_unit_sphere(L::ray({0, 0, -5}, {0, 0, 1}), L::v3(0, 0, 0), R(1), R(0), R(3.9)),
+            L::no_hit());
+  Uniform u(7);
+  int hits = 0;
+  for (int i = 0; i < 30000; ++i) {
+    double r = std::pow(10.0, -2.0 + 5.0 * u());
+    dvec3 c = (u.unit_vector() * 3.0) * r;
+    dvec3 o, d;
+    double dist;
+    switch (i % 3) {
+      case 0: {  // outside, aimed inside the silhouette
+        dist = r * (1.5 + 8.5 * u());
+        o = c + dist * u.unit_vector();
+        dvec3 to_c = glm::normalize(c - o);
+        d = glm::normalize(c + 0.95 * r * std::sqrt(u()) * perpendicular(to_c, u) - o);
+        break;
+      }
+      case 1:  // inside
+        o = c + 0.99 * r * u() * u.unit_vector();
+        d = u.unit_vector();
+        dist = glm::length(o - c);
+        break;
+      default: {  // the line misses
+        d = u.unit_vector();
+        o = c + r * (1.001 + 2.0 * u()) * perpendicular(d, u) - r * (2.0 + 10.0 * u()) * d;
+        dist = glm::length(o - c);
+      }
+    }
+    typename L::Ray ray = L::ray(o, d);
+    R general = L::intersect_sphere(ray, L::v3(c), R(r), R(0), inf);
+    R unit = L::intersect_unit_sphere(ray, L::v3(c), R(r), R(0), inf);
+    double tol = 64.0 * L::kEps * (dist + r);
+    if (i % 3 == 2) {
+      ASSERT_EQ(unit, L::no_hit()) << "i = " << i;
+      continue;
+    }
+    ASSERT_GT(unit, R(0)) << "miss, r = " << r << " i = " << i;
+    ASSERT_GT(general, R(0)) << "i = " << i;
+    ASSERT_NEAR(double(unit), double(general), tol) << "r = " << r << " i = " << i;
+    dvec3 p = to_d(ray.origin) + double(unit) * to_d(ray.direction);
+    ASSERT_NEAR(glm::length(p - c), r, tol) << "r = " << r << " i = " << i;
+    ++hits;
+  }
+  EXPECT_EQ(hits, 20000);
+}
+
 // Origins 1e4 from a unit sphere. The inputs are the same float values in both builds, so the
 // double result is exact to ~1e-12 and the difference is the float build's own error. With
 // |o - c| = 1e4 the rounding of f = o - c, of b = f.d and of c = f.f - r^2 is a few float ulps
@@ -119,7 +177,7 @@ TEST(ShaderIntersect, FarAwayOriginsFloatAgreesWithDouble) {
   Uniform u(4);
   const glm::vec3 c(3.0f, -2.0f, 7.0f);
   const float r = 1.0f;
-  double worst = 0;
+  double worst = 0, worst_unit = 0;
   for (int i = 0; i < 20000; ++i) {
     dvec3 dir_from_c = u.unit_vector();
     glm::vec3 o = glm::vec3(dvec3(c) + 1e4 * dir_from_c);
@@ -136,6 +194,12 @@ TEST(ShaderIntersect, FarAwayOriginsFloatAgreesWithDouble) {
     double rel = std::abs(double(tf) - td) / td;
     worst = std::max(worst, rel);
     ASSERT_LE(rel, 32.0 * 0x1.0p-23) << "i = " << i << " tf = " << tf << " td = " << td;
+    // The trace shader's form for unit directions: d is unit only to float rounding, which the
+    // same bound covers.
+    float tu = F::intersect_unit_sphere(F::Ray(o, d), c, r, 0.0f, 1e30f);
+    double rel_unit = std::abs(double(tu) - td) / td;
+    worst_unit = std::max(worst_unit, rel_unit);
+    ASSERT_LE(rel_unit, 32.0 * 0x1.0p-23) << "i = " << i << " tu = " << tu << " td = " << td;
   }
   // Rays that pass 1.1 radii from the centre miss in both builds.
   for (int i = 0; i < 2000; ++i) {
@@ -144,9 +208,11 @@ TEST(ShaderIntersect, FarAwayOriginsFloatAgreesWithDouble) {
     dvec3 target = dvec3(c) + (1.1 + u()) * perpendicular(to_c, u);
     glm::vec3 d = glm::vec3(glm::normalize(target - dvec3(o)));
     EXPECT_EQ(F::intersect_sphere(F::Ray(o, d), c, r, 0.0f, 1e30f), F::no_hit());
+    EXPECT_EQ(F::intersect_unit_sphere(F::Ray(o, d), c, r, 0.0f, 1e30f), F::no_hit());
     EXPECT_EQ(D::intersect_sphere(D::Ray(dvec3(o), dvec3(d)), dvec3(c), 1.0, 0.0, 1e300), D::no_hit());
   }
   RecordProperty("worst_difference_in_float_ulps_of_t", std::to_string(worst / 0x1.0p-23));
+  RecordProperty("worst_unit_difference_in_float_ulps_of_t", std::to_string(worst_unit / 0x1.0p-23));
 }
 
 // Signed squared distance |o - c|^2 - r^2 and the far root of |o + t d - c| = r, in long
@@ -163,7 +229,8 @@ long double far_root(dvec3 o, dvec3 d, dvec3 c, double r) {
   return (-b + std::sqrt(std::max(disc, 0.0L))) / a;
 }
 
-// A ray spawned as the trace shader spawns it (the hit reprojected onto the sphere with
+// A ray spawned as the trace shader spawns it (a unit direction, intersect_unit_sphere, the
+// hit reprojected onto the sphere with
 // sphere_hit_point, then offset_surface_point by the sphere's error scale) must not find the
 // same surface again:
 // leaving outwards (reflection off the outside, or refraction out of the inside) the offset
@@ -186,7 +253,7 @@ TYPED_TEST(ShaderIntersect, SpawnedRaysNeverRehitTheSameSphere) {
       dvec3 d = from_inside ? u.unit_vector()
                             : glm::normalize(c + 0.99 * r * u.unit_vector() - o);
       typename L::Ray ray = L::ray(o, d);
-      R t = L::intersect_sphere(ray, L::v3(c), R(r), R(0), inf);
+      R t = L::intersect_unit_sphere(ray, L::v3(c), R(r), R(0), inf);
       ASSERT_GT(t, R(0));
       typename L::vec3 p = L::sphere_hit_point(ray, t, L::v3(c), R(r));
       typename L::vec3 n_out = glm::normalize(p - L::v3(c));
@@ -199,14 +266,14 @@ TYPED_TEST(ShaderIntersect, SpawnedRaysNeverRehitTheSameSphere) {
       typename L::Ray leaving(L::offset_surface_point(p, n_out, scale), L::v3(frame.to_world(cos_theta, phi)));
       ASSERT_GT(outside_measure(to_d(leaving.origin), c, r), 0.0L)
           << "offset origin not outside: r = " << r << " i = " << i;
-      R t_out = L::intersect_sphere(leaving, L::v3(c), R(r), R(0), inf);
+      R t_out = L::intersect_unit_sphere(leaving, L::v3(c), R(r), R(0), inf);
       ASSERT_EQ(t_out, L::no_hit()) << "re-hit leaving the sphere: r = " << r << " i = " << i
                                     << " t = " << t_out;
 
       typename L::Ray entering(L::offset_surface_point(p, -n_out, scale), L::v3(frame.to_world(-cos_theta, phi)));
       ASSERT_LT(outside_measure(to_d(entering.origin), c, r), 0.0L)
           << "offset origin not inside: r = " << r << " i = " << i;
-      R t_in = L::intersect_sphere(entering, L::v3(c), R(r), R(0), inf);
+      R t_in = L::intersect_unit_sphere(entering, L::v3(c), R(r), R(0), inf);
       double expected = double(far_root(to_d(entering.origin), to_d(entering.direction), c, r));
       // The far side to the rounding of the coordinates (a few ulps of |c| + r, 64 allowed,
       // divided by cos(theta): a radial error e moves a chord's far end by e / cos(theta));

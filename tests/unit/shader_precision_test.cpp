@@ -2,6 +2,8 @@
 // compiled as C++ (float unless said otherwise, as the GPU runs it). `ctest -R hard_` runs
 // these with the rendered ones (tests/gl/render_precision_test.cpp) and the loader's
 // (hard_Load in malformed_input_test.cpp).
+// Rays are intersected with spheres as the trace shader intersects them: every direction it
+// spawns is unit, so intersect_unit_sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -90,7 +92,7 @@ TEST(hard_Reintersection, SpawnedRaysNeverRehitASphereFloat) {
       const dvec3 to_c = glm::normalize(dvec3(c) - dvec3(o));
       const dvec3 target = dvec3(c) + 0.9 * r * std::sqrt(u()) * Frame(to_c).to_world(0.0, 6.3 * u());
       const F::Ray ray(o, vec3(glm::normalize(target - dvec3(o))));
-      const float t = F::intersect_sphere(ray, c, rf, 0.0f, kInf);
+      const float t = F::intersect_unit_sphere(ray, c, rf, 0.0f, kInf);
       if (t == F::NO_HIT) continue;  // the target rounded off a tiny far sphere: not this test
       const bool grazing = i % 8 < 2;
       const double cos_theta = grazing ? std::pow(10.0, -4.0 + 2.0 * u()) : 0.01 + 0.99 * u();
@@ -103,9 +105,9 @@ TEST(hard_Reintersection, SpawnedRaysNeverRehitASphereFloat) {
         };
         const vec3 d_out = direction_about(dvec3(n), cos_theta, u);
         const F::Ray out(spawn(n), d_out);
-        bool bad = F::intersect_sphere(out, c, rf, 0.0f, kInf) != F::NO_HIT;
+        bool bad = F::intersect_unit_sphere(out, c, rf, 0.0f, kInf) != F::NO_HIT;
         const F::Ray in(spawn(-n), direction_about(dvec3(n), -cos_theta, u));
-        const float t_in = F::intersect_sphere(in, c, rf, 0.0f, kInf);
+        const float t_in = F::intersect_unit_sphere(in, c, rf, 0.0f, kInf);
         // The exact chord from the spawned origin: -2 (f.d) for an origin on the sphere.
         const long double chord =
             -2.0L * ((long double)(in.origin.x - c.x) * in.direction.x +
@@ -262,7 +264,7 @@ TEST(hard_Intersection, HugeSphereFloorHasNoAcneFloat) {
     const double below = glm::radians(2.0 + 58.0 * u()), phi = 6.3 * u();
     const vec3 d(float(std::cos(below) * std::cos(phi)), float(-std::sin(below)), float(std::cos(below) * std::sin(phi)));
     const F::Ray ray(o, d);
-    const float t = F::intersect_sphere(ray, c, r, 0.0f, kInf);
+    const float t = F::intersect_unit_sphere(ray, c, r, 0.0f, kInf);
     ASSERT_NE(t, F::NO_HIT);
     const vec3 plain = o + t * d, p = F::sphere_hit_point(ray, t, c, r);
     worst_plain = std::max(worst_plain, std::abs(double(std::sqrt(std::abs(outside_measure(plain, c, r)) + (long double)r * r) - r)));
@@ -270,7 +272,7 @@ TEST(hard_Intersection, HugeSphereFloorHasNoAcneFloat) {
     const vec3 n = glm::normalize(p - c);
     const double cos_theta = i % 4 == 0 ? std::pow(10.0, -3.0 + 2.0 * u()) : u();
     const F::Ray bounce(F::offset_surface_point(p, n, F::sphere_error_scale(c, r)), direction_about(dvec3(n), cos_theta, u));
-    escapes += F::intersect_sphere(bounce, c, r, 0.0f, kInf) == F::NO_HIT;
+    escapes += F::intersect_unit_sphere(bounce, c, r, 0.0f, kInf) == F::NO_HIT;
     ++rays;
   }
   RecordProperty("worst_radial_error_plain", std::to_string(worst_plain));
@@ -297,7 +299,7 @@ TEST(hard_Intersection, TinyFarSphereIsHitByRaysAimedAtIt) {
       const dvec3 side = Frame(to_c).to_world(0.0, 6.3 * u());
       const double impact = 0.95 * std::sqrt(u());
       const F::Ray hit_ray(of, vec3(glm::normalize(dvec3(c) + impact * r * side - dvec3(of))));
-      const float t = F::intersect_sphere(hit_ray, c, float(r), 0.0f, kInf);
+      const float t = F::intersect_unit_sphere(hit_ray, c, float(r), 0.0f, kInf);
       misses += t == F::NO_HIT;
       if (t != F::NO_HIT) {
         const vec3 p = F::sphere_hit_point(hit_ray, t, c, float(r));
@@ -305,7 +307,7 @@ TEST(hard_Intersection, TinyFarSphereIsHitByRaysAimedAtIt) {
         misses += glm::dot(dvec3(p) - dvec3(c), dvec3(hit_ray.direction)) > 0;
       }
       const F::Ray miss_ray(of, vec3(glm::normalize(dvec3(c) + 1.05 * r * side - dvec3(of))));
-      false_hits += F::intersect_sphere(miss_ray, c, float(r), 0.0f, kInf) != F::NO_HIT;
+      false_hits += F::intersect_unit_sphere(miss_ray, c, float(r), 0.0f, kInf) != F::NO_HIT;
       ++rays;
     }
   }

@@ -91,6 +91,7 @@ namespace {
     GLINT_SHADER_FWD(NS, ggx_visible_normal_pdf)                                               \
     GLINT_SHADER_FWD(NS, sample_ggx_visible_normal)                                            \
     GLINT_SHADER_FWD(NS, intersect_sphere)                                                     \
+    GLINT_SHADER_FWD(NS, intersect_unit_sphere)                                                \
     GLINT_SHADER_FWD(NS, intersect_triangle)                                                   \
     GLINT_SHADER_FWD(NS, intersect_quad)                                                       \
     GLINT_SHADER_FWD(NS, intersect_planar_quad)                                                \
