@@ -17,6 +17,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
+#include "renderer/loop_shapes.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/program_worker.h"
 #include "renderer/scene_validation.h"
@@ -126,6 +127,9 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   glCreateVertexArrays(1, &vao_);
   glCreateTextures(GL_TEXTURE_BUFFER, kTables, table_textures_);
   glCreateBuffers(kTables, table_buffers_);
+  glCreateBuffers(1, &loop_shapes_buffer_);
+  const LoopShapesBlock empty;
+  glNamedBufferData(loop_shapes_buffer_, sizeof empty, &empty, GL_DYNAMIC_DRAW);
   llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
   // Every table is bound for every pass: never without storage, even before a scene or a BVH
   // exists.
@@ -144,6 +148,7 @@ GpuRenderer::~GpuRenderer() {
   resize(0, 0);
   glDeleteTextures(kTables, table_textures_);
   glDeleteBuffers(kTables, table_buffers_);
+  glDeleteBuffers(1, &loop_shapes_buffer_);
   glDeleteVertexArrays(1, &vao_);
   if (!trace_timers_.empty()) glDeleteQueries(static_cast<GLsizei>(trace_timers_.size()), trace_timers_.data());
   glDeleteTextures(2, texel_textures_);
@@ -229,6 +234,8 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   features_.bvh_traversal = use_bvh_;
   features_.sobol_sampler = options_.sampler == SamplerKind::sobol;
   features_.pcg_sampler = !features_.sobol_sampler;
+  features_ = with_loop_counts(features_, static_cast<long>(scene.spheres.size()),
+                               static_cast<long>(scene.quads.size()));
   if (width != width_ || height != height_) {
     resize(width, height);
     result.accumulation_reset = true;
@@ -337,6 +344,8 @@ void GpuRenderer::upload_geometry(const PackedScene& packed) {
   upload_table(1, packed.quads);
   upload_table(2, packed.materials);
   upload_table(4, packed.lights);
+  const LoopShapesBlock block = loop_shapes_block(packed.spheres, packed.quads);
+  glNamedBufferSubData(loop_shapes_buffer_, 0, sizeof block, &block);
   shape_count_ = static_cast<long>(packed.spheres.size() + packed.quads.size());
   light_count_ = static_cast<int>(packed.lights.size());
   uniforms_.sphere_count = static_cast<int>(packed.spheres.size());
@@ -663,13 +672,15 @@ std::shared_ptr<ProgramJob> GpuRenderer::submit_variant_job(const std::string& d
                               compensation_[current_], texel_textures_[1], variance_[current_],
                               variance_compensation_[current_]};
   std::vector<GLuint> tables(table_textures_, table_textures_ + kTables);
-  job->warm_up = [uniforms, textures, tables, compute](GlProgram& p) {
+  const GLuint loop_shapes = loop_shapes_buffer_;
+  job->warm_up = [uniforms, textures, tables, loop_shapes, compute](GlProgram& p) {
     apply_trace_uniforms(p, uniforms);
     p.set("u_resolution", glm::ivec2(1, 1));
     p.set("u_samples_before", 0u);
     p.set("u_samples_per_pass", 0);
     for (GLuint i = 0; i < 7; ++i) glBindTextureUnit(i, textures[i]);
     for (GLuint k = 0; k < tables.size(); ++k) glBindTextureUnit(kTableUnit + k, tables[k]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kLoopShapesBinding, loop_shapes);
     if (compute) {
       warm_up_compute_pass();
       return;
@@ -722,6 +733,7 @@ GlProgram& GpuRenderer::bind_trace_pass(GlProgram& p, int samples, int64_t sampl
   p.set("u_pass_index", static_cast<unsigned>(pass_index));
   glUseProgram(p.id());
   for (GLuint k = 0; k < kTables; ++k) glBindTextureUnit(kTableUnit + k, table_textures_[k]);
+  glBindBufferBase(GL_UNIFORM_BUFFER, kLoopShapesBinding, loop_shapes_buffer_);
   glBindTextureUnit(1, texel_textures_[0]);
   glBindTextureUnit(2, environment_texture_);
   glBindTextureUnit(4, texel_textures_[1]);

@@ -260,6 +260,8 @@ class GpuRenderer {
   static constexpr GLuint kTableUnit = 7;
   GLuint table_textures_[kTables] = {};
   GLuint table_buffers_[kTables] = {};  // their storage
+  // The first shapes again, as the uniform block of an unrolled loop reads them (loop_shapes.h).
+  GLuint loop_shapes_buffer_ = 0;
   // The texels of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F.
   GLuint texel_textures_[2] = {0, 0};
   GLuint environment_texture_ = 0;

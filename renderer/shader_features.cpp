@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "renderer/image.h"
+#include "renderer/loop_shapes.h"
 #include "renderer/quad_shape.h"
 
 namespace glint {
@@ -63,6 +64,13 @@ ShaderFeatures scene_features(const Scene& scene) {
   return f;
 }
 
+ShaderFeatures with_loop_counts(ShaderFeatures f, long spheres, long quads) {
+  const bool fixed = f.loop_traversal && !f.bvh_traversal && unrolls_loop(spheres, quads);
+  f.loop_spheres = fixed ? static_cast<int>(spheres) : -1;
+  f.loop_quads = fixed ? static_cast<int>(quads) : -1;
+  return f;
+}
+
 bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
   auto ok = [](bool have, bool need) { return have || !need; };
   return ok(program.has_emitters, needed.has_emitters) &&
@@ -74,7 +82,9 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.loop_traversal, needed.loop_traversal) &&
          ok(program.bvh_traversal, needed.bvh_traversal) &&
          ok(program.pcg_sampler, needed.pcg_sampler) && ok(program.sobol_sampler, needed.sobol_sampler) &&
-         (needed.material_types & ~program.material_types) == 0;
+         (needed.material_types & ~program.material_types) == 0 &&
+         (program.loop_spheres < 0 || (program.loop_spheres == needed.loop_spheres &&
+                                       program.loop_quads == needed.loop_quads));
 }
 
 std::string shader_defines(const ShaderFeatures& f) {
@@ -99,6 +109,10 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.has_general_quads, "GLINT_NO_GENERAL_QUADS");
   define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
   define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
+  if (f.loop_spheres >= 0) {
+    out += "#define GLINT_LOOP_SPHERES " + std::to_string(f.loop_spheres) + "\n";
+    out += "#define GLINT_LOOP_QUADS " + std::to_string(f.loop_quads) + "\n";
+  }
   return out;
 }
 

@@ -2,6 +2,8 @@
 // Each feature that is absent becomes a `#define GLINT_NO_...` line after `#version` of
 // shaders/trace.frag and trace.comp; a macro that is not defined means the feature is present, so the C++
 // build of the shader library (renderer/shader_lib.h), which defines none, keeps every branch.
+// A scene of few shapes also fixes their numbers (loop_spheres, loop_quads): a program compiled
+// for them unrolls the closest-hit loop.
 // Only features whose removal makes the shader cheaper are listed; removing one never changes
 // the random-number sequence, so generic and specialised programs render the same image.
 // On Mesa's llvmpipe a branch that no pixel takes still costs its full time: the shader runs
@@ -38,6 +40,11 @@ struct ShaderFeatures {
   // scene keeps both, the renderer the one it uses; with one, u_sobol is a constant.
   bool pcg_sampler = true;
   bool sobol_sampler = true;
+  // A program for exactly this many spheres and quads, whose closest-hit loop is unrolled and
+  // reads the shapes from a uniform block (renderer/loop_shapes.h); -1: any number, read from the
+  // tables. Set by with_loop_counts, for scenes that the loop traverses; the two go together.
+  int loop_spheres = -1;
+  int loop_quads = -1;
 
   bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
   bool operator==(const ShaderFeatures&) const = default;
@@ -50,10 +57,15 @@ ShaderFeatures generic_features();
 // having alpha when its file has an alpha channel (header probe) or cannot be probed.
 ShaderFeatures scene_features(const Scene& scene);
 
+// `f` with the counts of an unrolled loop when the scene of `spheres` and `quads` is traced by the
+// loop alone and unrolls_loop allows it (renderer/loop_shapes.h), else with both -1.
+ShaderFeatures with_loop_counts(ShaderFeatures f, long spheres, long quads);
+
 // True when a program compiled for `program` renders every scene that needs `needed`.
 bool covers(const ShaderFeatures& program, const ShaderFeatures& needed);
 
-// `#define GLINT_NO_...` lines (each ending in '\n') for the absent features; empty for
+// `#define GLINT_NO_...` lines (each ending in '\n') for the absent features, and
+// `#define GLINT_LOOP_SPHERES n` and `GLINT_LOOP_QUADS m` for an unrolled loop; empty for
 // generic_features(). Also serves as the key of the program cache.
 std::string shader_defines(const ShaderFeatures& features);
 

@@ -266,24 +266,30 @@ struct SceneHit {
 // The scene as shaders/lib/bvh.glsl reads it.
 int scene_sphere_count() { return u_sphere_count; }
 int scene_quad_count() { return u_quad_count; }
-float scene_sphere_hit(int i, Ray ray, float tmax) {
-  vec4 s = sphere_at(i).center_radius;
-  return intersect_unit_sphere(ray, s.xyz, s.w, 0.0, tmax);
+// The nearest hit in (0, tmax) of a sphere or a quad, or NO_HIT (every ray the tracer spawns has
+// a unit direction).
+float sphere_hit(vec4 center_radius, Ray ray, float tmax) {
+  return intersect_unit_sphere(ray, center_radius.xyz, center_radius.w, 0.0, tmax);
 }
-float scene_quad_hit(int i, Ray ray, float tmax) {
+float quad_hit(GpuQuad q, Ray ray, float tmax) {
 #if defined(GLINT_NO_GENERAL_QUADS)
   // Every quad is planar and convex: intersect_planar_quad's two steps.
-  GpuQuad q = quad_at(i);
   float t = planar_quad_plane_t(ray, q.p0.xyz, q.normal.xyz, 0.0, tmax);
   if (t == NO_HIT) return NO_HIT;
   if (!planar_quad_inside_edges(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz)) return NO_HIT;
   return t;
 #else
-  GpuQuad q = quad_at(i);
   return intersect_quad(ray, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, q.uv01.xy, q.uv01.zw,
                         q.uv23.xy, q.uv23.zw, 0.0, tmax).t;
 #endif
 }
+float scene_sphere_hit(int i, Ray ray, float tmax) {
+  return sphere_hit(sphere_at(i).center_radius, ray, tmax);
+}
+float scene_quad_hit(int i, Ray ray, float tmax) { return quad_hit(quad_at(i), ray, tmax); }
+#if defined(GLINT_LOOP_SPHERES)
+#include "unrolled_loop.glsl"
+#endif
 BvhNode bvh_node(int i) {
   ivec4 a = table_texel(u_bvh_node_table, 2 * i);
   ivec4 b = table_texel(u_bvh_node_table, 2 * i + 1);
@@ -296,7 +302,9 @@ int bvh_primitive(int i) { return table_texel(u_bvh_primitive_table, i).x; }
 bool g_incomplete;
 
 PrimitiveHit closest_primitive(Ray ray) {
-#if defined(GLINT_NO_BVH)
+#if defined(GLINT_LOOP_SPHERES)
+  return closest_hit_unrolled(ray, 1e30);
+#elif defined(GLINT_NO_BVH)
   return closest_hit_loop(ray, 1e30);
 #else
 #if !defined(GLINT_NO_LOOP)

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "renderer/bvh.h"
+#include "renderer/loop_shapes.h"
 #include "renderer/project_file.h"
 #include "tests/gl/gl_test_support.h"
 
@@ -63,6 +65,7 @@ TEST(GlShaderVariants, EveryProjectRendersTheSameSpecialisedAndGeneric) {
     needed.bvh_traversal = use_bvh(Accel::automatic, static_cast<long>(scene.spheres.size() + scene.quads.size()),
                                    scene.render.max_bounces);
     needed.loop_traversal = !needed.bvh_traversal;
+    needed = with_loop_counts(needed, static_cast<long>(scene.spheres.size()), static_cast<long>(scene.quads.size()));
     EXPECT_EQ(specialised, shader_defines(needed) != "")
         << "every pass should use the specialised program when the scene lacks a feature";
     double diff = test::max_relative_difference(special, generic);
@@ -133,6 +136,65 @@ TEST(GlShaderVariants, DerivedScenesRenderTheSameSpecialisedAndGeneric) {
     for (float v : special.pixels) mean += v;
     EXPECT_GT(mean, 0.0) << "the scene is lit";
     EXPECT_LE(test::max_relative_difference(special, generic), kRelativeTolerance);
+  }
+}
+
+// A scene of few shapes gets a program for its exact numbers of spheres and quads, with the
+// closest-hit loop unrolled and the shapes in a uniform block (renderer/loop_shapes.h): the
+// same image as the generic program after shapes move (same program, new block), and at the
+// limit of kLoopShapesMax spheres, one past which the loop reads the tables again.
+TEST(GlShaderVariants, UnrolledLoopFollowsMovedShapesAndStopsAtItsLimit) {
+  test::ensure_gl_context();
+  Scene scene = load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint");
+  scene.render.seed = 5;
+  GpuRenderer r;
+  r.sync(scene, 24, 24);
+  r.prepare_specialised_program();
+  r.trace(2);
+  ASSERT_FALSE(r.last_pass_generic());
+  const std::string defines = r.last_pass_defines();
+  EXPECT_NE(defines.find("#define GLINT_LOOP_SPHERES 2\n#define GLINT_LOOP_QUADS 6\n"), std::string::npos)
+      << defines;
+  scene.spheres[0].center += glm::vec3(30, 10, -20);
+  scene.spheres[1].radius *= 0.8f;
+  for (glm::vec3& corner : scene.quads.back().corners) corner.y -= 20;  // the light
+  ASSERT_TRUE(r.sync(scene, 24, 24).accumulation_reset);
+  r.trace(2);
+  EXPECT_EQ(r.last_pass_defines(), defines) << "moving shapes keeps the program";
+  GpuRendererOptions generic;
+  generic.force_generic_shader = true;
+  GpuRenderer g(generic);
+  g.sync(scene, 24, 24);
+  g.trace(2);
+  EXPECT_LE(test::max_relative_difference(r.read_accumulation(), g.read_accumulation()), kRelativeTolerance)
+      << "the block holds the moved shapes";
+
+  // kLoopShapesMax small balls in a row under the Cornell box's light (47 shapes in all: still
+  // traced by the loop), then one more.
+  Scene many = load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint");
+  many.render.seed = 9;
+  many.spheres.clear();
+  for (int i = 0; i < kLoopShapesMax; ++i)
+    many.spheres.push_back({.name = "b" + std::to_string(i), .center = {40.0f + 15.0f * i, 10, 250},
+                            .radius = 7, .material = scene.spheres[0].material});
+  for (int extra = 0; extra < 2; ++extra) {
+    SCOPED_TRACE(extra ? "one sphere past the limit" : "at the limit");
+    if (extra) many.spheres.push_back({.name = "last", .center = {278, 100, 278}, .radius = 60,
+                                       .material = scene.spheres[0].material});
+    ASSERT_FALSE(use_bvh(Accel::automatic, static_cast<long>(many.spheres.size() + many.quads.size()),
+                         many.render.max_bounces));
+    GpuRenderer special;
+    special.sync(many, 24, 24);
+    special.prepare_specialised_program();
+    special.trace(2);
+    EXPECT_FALSE(special.last_pass_generic());
+    EXPECT_EQ(special.last_pass_defines().find("GLINT_LOOP_SPHERES") != std::string::npos, extra == 0)
+        << special.last_pass_defines();
+    GpuRenderer plain(generic);
+    plain.sync(many, 24, 24);
+    plain.trace(2);
+    EXPECT_LE(test::max_relative_difference(special.read_accumulation(), plain.read_accumulation()),
+              kRelativeTolerance);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <random>
 
+#include "renderer/loop_shapes.h"
 #include "renderer/project_file.h"
 #include "renderer/quad_shape.h"
 #include "renderer/shader_features.h"
@@ -226,6 +227,40 @@ TEST(ShaderFeatures, TraversalDefinesAndCover) {
   // The scene alone keeps both (the renderer narrows them).
   Scene s;
   EXPECT_TRUE(scene_features(s).loop_traversal && scene_features(s).bvh_traversal);
+}
+
+
+// A scene that the loop alone traverses, with at most kLoopShapesMax of each shape, gets a
+// program for its exact counts (renderer/loop_shapes.h); it covers only scenes of those counts,
+// and a program for any count covers it.
+TEST(ShaderFeatures, LoopCountsDefinesAndCover) {
+  ShaderFeatures loop = generic_features();
+  loop.bvh_traversal = false;
+  ShaderFeatures fixed = with_loop_counts(loop, 9, 0);
+  EXPECT_EQ(fixed.loop_spheres, 9);
+  EXPECT_EQ(fixed.loop_quads, 0);
+  EXPECT_EQ(shader_defines(fixed),
+            "#define GLINT_NO_BVH\n#define GLINT_LOOP_SPHERES 9\n#define GLINT_LOOP_QUADS 0\n");
+  EXPECT_TRUE(covers(generic_features(), fixed));
+  EXPECT_TRUE(covers(loop, fixed));
+  EXPECT_TRUE(covers(fixed, fixed));
+  EXPECT_FALSE(covers(fixed, loop)) << "a program for 9 spheres cannot trace any number";
+  EXPECT_FALSE(covers(fixed, with_loop_counts(loop, 10, 0)));
+  EXPECT_FALSE(covers(fixed, with_loop_counts(loop, 9, 1)));
+  // The limits: kLoopShapesMax of each kind unrolls, one more does not.
+  EXPECT_EQ(with_loop_counts(loop, kLoopShapesMax, kLoopShapesMax).loop_quads, kLoopShapesMax);
+  EXPECT_EQ(with_loop_counts(loop, kLoopShapesMax + 1, 0).loop_spheres, -1);
+  EXPECT_EQ(with_loop_counts(loop, 0, kLoopShapesMax + 1).loop_quads, -1);
+  EXPECT_EQ(shader_defines(with_loop_counts(loop, 0, kLoopShapesMax + 1)), "#define GLINT_NO_BVH\n");
+  // Only a program that has the loop and not the BVH: the BVH's (or one with both, chosen by a
+  // uniform) reads the tables.
+  ShaderFeatures bvh = generic_features();
+  bvh.loop_traversal = false;
+  EXPECT_EQ(with_loop_counts(bvh, 9, 0).loop_spheres, -1);
+  EXPECT_EQ(with_loop_counts(generic_features(), 9, 0).loop_spheres, -1);
+  // And counts set before are cleared when the scene grows past the limit.
+  EXPECT_EQ(with_loop_counts(fixed, 40, 0).loop_spheres, -1);
+  EXPECT_EQ(with_loop_counts(fixed, 40, 0).loop_quads, -1);
 }
 
 }  // namespace
