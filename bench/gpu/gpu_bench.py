@@ -142,8 +142,11 @@ def glint_race(glint, name, project, width, height, backend, rate, ref_seconds, 
 def mitsuba_available(variant):
     """(mitsuba module, None) when `variant` can be set, else (None, why)."""
     if variant.startswith("llvm"):
-        # Before Dr.Jit loads: a libLLVM that this Dr.Jit accepts (bench/mitsuba_export.py).
-        mx.choose_variant(log)
+        # Before Dr.Jit loads: a libLLVM that this Dr.Jit accepts (bench/mitsuba_export.py);
+        # with none, Dr.Jit would abort the process in its first kernel.
+        if mx.choose_variant(log)[0] != variant:
+            return None, (f"no libLLVM that this Dr.Jit accepts for {variant} "
+                          "(bash bench/run.sh fetches one into bench/.venv/llvm)")
     try:
         import mitsuba as mi
     except ImportError as e:

@@ -16,7 +16,7 @@ if [ ! -x build/glint ]; then
 fi
 rm -rf .gpu
 mkdir -p .gpu/lib .gpu/whl .gl
-strip --strip-debug -o .gpu/glint build/glint
+strip --strip-all -o .gpu/glint build/glint
 # Everything glint links except the C and C++ runtimes, which the GPU machine's own system has
 # (a newer one: an older copy first on the library path could break its Python).
 ldd build/glint | awk '/=> \//{print $1" "$3}' | while read -r name path; do

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Copies a Mitsuba wheel without the variants the GPU bench does not use (the mono, spectral
-and polarized ones) and without data/srgb.coeff (the RGB-to-spectrum table of the spectral
+"""Copies a Mitsuba wheel without the variants the GPU bench does not use on the GPU machine
+(every one but cuda_ad_rgb and scalar_rgb: the `--dry` check here runs bench/.venv's full
+Mitsuba, not this wheel) and without data/srgb.coeff (the RGB-to-spectrum table of the spectral
 variants; the rgb ones rendered the bench scenes without it), so that it and Dr.Jit fit in what a
 device call carries.
 
@@ -14,7 +15,7 @@ import re
 import sys
 import zipfile
 
-KEEP = {"cuda_ad_rgb", "llvm_ad_rgb", "scalar_rgb"}
+KEEP = {"cuda_ad_rgb", "scalar_rgb"}
 VARIANT = re.compile(r"^mitsuba/((?:scalar|llvm|cuda)_[a-z_]+)\.cpython-[^/]*\.so$")
 
 
