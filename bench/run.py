@@ -340,6 +340,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
              f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point")
     L.append("- Glint renders with its default sampler (Owen-scrambled Sobol); the error per sample "
              "of Sobol against PCG at equal spp is measured by bench/qmc_gain.py (bench/SAMPLER.md)\n")
+    L.extend(kept_sections(os.path.join(out_dir, f"{prefix}RESULTS.md")))
     if results_extra.get("race") is not None:
         L.append(race.markdown(results_extra["race"], results_extra["trial"]["winner"], fmt_s))
         L.append(mitsuba_samplers.markdown(results_extra["trial"]))
@@ -568,6 +569,29 @@ def machine_info(gl):
     except OSError:
         pass
     return cpu
+
+
+# Sections of RESULTS.md that other scripts write (bench/denoise.py's tables): a rewrite by
+# this script keeps them as they are, after the header.
+KEPT_SECTIONS = ("## Denoising",)
+
+
+def kept_sections(path):
+    """The KEPT_SECTIONS of the RESULTS.md at `path` (up to the next "## " heading), as lines."""
+    try:
+        with open(path) as f:
+            lines = f.read().split("\n")
+    except OSError:
+        return []
+    out, keep = [], False
+    for line in lines:
+        if line.startswith("## "):
+            keep = line.startswith(KEPT_SECTIONS)
+        if keep:
+            out.append(line)
+    while out and not out[-1].strip():
+        out.pop()
+    return out + [""] if out else []
 
 
 def ensure_llvm(allow_download):
