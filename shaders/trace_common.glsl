@@ -1,6 +1,6 @@
 // The path tracer shared by the fragment-shader and the compute-shader entry points
 // (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §2): uniforms, buffers, samplers,
-// trace_path and add_samples, one copy, so that both draw the same random numbers and give the
+// continue_path and add_samples, one copy, so that both draw the same random numbers and give the
 // same image. Included after the entry point's #version line and the `#define GLINT_NO_...`
 // lines that renderer/shader_features.cpp inserts for what the scene lacks (none defined is
 // the generic program).
@@ -501,7 +501,7 @@ LightSample sample_light(int i, vec3 origin, vec2 u) {
 // of the shadow ray, not from p: on shapes far from the origin the offset is large (16 float
 // epsilons of 1e5 is 0.19), and a direction chosen from p but traced from the offset point
 // would miss the edges of the light it aimed at (biased). BSDF rays record the same origin
-// (last_p in trace_path), so both strategies see the light from the same point.
+// (last_p in continue_path), so both strategies see the light from the same point.
 vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale, int bounce) {
   float u_pick = sample_1d(light_dimension(bounce));
   vec2 u = sample_2d(light_dimension(bounce));
@@ -545,97 +545,108 @@ vec3 direct_light(SurfaceMaterial m, vec3 p, vec3 n, vec3 wo, float error_scale,
   return f * li * (power_heuristic(pdf, pdf_bsdf(m, n, wo, wi)) / pdf);
 }
 
-vec3 trace_path(Ray ray) {
-  vec3 radiance = vec3(0.0);
-  vec3 throughput = vec3(1.0);
-  int bounces = 0;
-  int passes = 0;
-  bool light_sampling = u_light_count > 0 || u_env_select > 0.0;
+// A path in flight: what continue_path carries from one bounce to the next.
+struct PathState {
+  Ray ray;
+  vec3 radiance;
+  vec3 throughput;
+  int bounces;
+  int passes;  // pass-throughs of cut-outs so far (not bounces)
   // The last scattering vertex: where next-event estimation would have sampled the light that
   // a BSDF-sampled ray finds, for the MIS weight. Camera rays and delta lobes get weight 1.
-  vec3 last_p = ray.origin;
-  float last_pdf = 0.0;
-  bool last_delta = true;
+  vec3 last_p;
+  float last_pdf;
+  bool last_delta;
   // The product of eta^2 over the refractions so far: a refracted ray's weight carries 1 / eta^2
   // (lib/dielectric.glsl), which the roulette undoes, so that a path inside glass is not killed
   // for a scale it loses again on the way out (pbrt-v4's etaScale; Mitsuba 3 does the same).
-  float eta_scale = 1.0;
-  for (;;) {
-    SceneHit hit = intersect_scene(ray);
-    if (hit.material < 0) {
-      float w = 1.0;
+  float eta_scale;
+};
+
+PathState start_path(Ray ray) {
+  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0);
+}
+
+// One closest-hit query of the path and what follows from it: the emission or environment it
+// finds, next-event estimation and the BSDF sample of the next ray. Returns false when the path
+// has ended (its radiance is then final).
+bool continue_path(inout PathState path) {
+  bool light_sampling = u_light_count > 0 || u_env_select > 0.0;
+  Ray ray = path.ray;
+  SceneHit hit = intersect_scene(ray);
+  if (hit.material < 0) {
+    float w = 1.0;
 #if !defined(GLINT_NO_ENV_TEXTURE)  // without an environment map u_env_select is 0
-      if (!last_delta && u_env_select > 0.0) {
-        w = power_heuristic(last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
-      }
+    if (!path.last_delta && u_env_select > 0.0) {
+      w = power_heuristic(path.last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
+    }
 #endif
-      radiance += throughput * environment(ray.direction) * w;
-      break;
-    }
-    GpuMaterial gm = material_at(hit.material);
-    vec3 p = hit.position;
-    vec3 wo = -ray.direction;
-    vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;
-    vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
+    path.radiance += path.throughput * environment(ray.direction) * w;
+    return false;
+  }
+  GpuMaterial gm = material_at(hit.material);
+  vec3 p = hit.position;
+  vec3 wo = -ray.direction;
+  vec3 n = dot(hit.normal, wo) >= 0.0 ? hit.normal : -hit.normal;
+  vec4 color_tex = texture_lookup(gm.layers.x, hit.uv);
 #if !defined(GLINT_NO_COVERAGE)  // without it coverage is 1: no test, and no rand() either
-    float coverage = gm.params.z * color_tex.a;
-    if (coverage < 1.0 && passes < MAX_PASS_THROUGH && rand() >= coverage) {
-      // Not a bounce: the ray continues unchanged past the surface.
-      ray.origin = offset_surface_point(p, -n, hit.error_scale);
-      ++passes;
-      continue;
-    }
+  float coverage = gm.params.z * color_tex.a;
+  if (coverage < 1.0 && path.passes < MAX_PASS_THROUGH && rand() >= coverage) {
+    // Not a bounce: the ray continues unchanged past the surface.
+    path.ray.origin = offset_surface_point(p, -n, hit.error_scale);
+    ++path.passes;
+    return true;
+  }
 #endif
 #if !defined(GLINT_NO_EMITTERS)
-    // Emission found by BSDF sampling, weighted against next-event estimation of the same
-    // light from last_p. Shapes that are not lights (no estimated power) keep weight 1.
-    float w = 1.0;
-    if (hit.light >= 0 && !last_delta && u_light_count > 0) {
-      w = power_heuristic(last_pdf, light_pdf(hit.light, last_p, p));
-    }
-    radiance += throughput * material_emission(gm, hit.uv) * w;
-#endif
-    if (bounces >= u_max_bounces) break;
-    SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
-#if !defined(GLINT_NO_REFRACTIVE)
-    // A refractive surface's inside is a sphere's ball and the side of a quad opposite its
-    // geometric normal: a ray arriving from there leaves the material (relative index 1 / ior).
-    if (m.type == MATERIAL_REFRACTIVE && dot(hit.normal, wo) < 0.0) m.ior = 1.0 / m.ior;
-#endif
-    bool delta = is_delta_material(m);
-#if !defined(GLINT_NO_LIGHT_SAMPLING)
-    if (light_sampling && !delta) {
-      radiance += throughput * direct_light(m, p, n, wo, hit.error_scale, bounces);
-    }
-#endif
-    float u_lobe = sample_1d(bsdf_dimension(bounces));
-    vec2 u = sample_2d(bsdf_dimension(bounces));
-    BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
-    if (!s.valid) break;
-    throughput *= s.weight;
-    if (max_component(throughput) <= 0.0) break;
-    // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it
-    // finds is the one next-event estimation at last_p aimed at, along the same direction.
-    // (A refractive surface bends the ray and blocks shadow rays: its delta lobes are vertices
-    // with last_delta, so the light they find has weight 1.)
-    ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
-#if !defined(GLINT_NO_REFRACTIVE)
-    if (m.type == MATERIAL_REFRACTIVE && dot(s.wi, n) < 0.0) eta_scale *= m.ior * m.ior;
-#endif
-    if (!(s.delta && dot(s.wi, n) < 0.0 && m.type == MATERIAL_TRANSPARENT)) {
-      last_p = ray.origin;
-      last_pdf = s.pdf;
-      last_delta = s.delta;
-    }
-    ++bounces;
-    if (u_russian_roulette && bounces >= ROULETTE_START) {
-      // Survive with probability max(throughput) eta_scale (at most 1); survivors carry 1/q more.
-      float q = min(1.0, max_component(throughput) * eta_scale);
-      if (rand() >= q) break;
-      throughput /= q;
-    }
+  // Emission found by BSDF sampling, weighted against next-event estimation of the same
+  // light from last_p. Shapes that are not lights (no estimated power) keep weight 1.
+  float w = 1.0;
+  if (hit.light >= 0 && !path.last_delta && u_light_count > 0) {
+    w = power_heuristic(path.last_pdf, light_pdf(hit.light, path.last_p, p));
   }
-  return radiance;
+  path.radiance += path.throughput * material_emission(gm, hit.uv) * w;
+#endif
+  if (path.bounces >= u_max_bounces) return false;
+  SurfaceMaterial m = surface_material(gm, color_tex, hit.uv);
+#if !defined(GLINT_NO_REFRACTIVE)
+  // A refractive surface's inside is a sphere's ball and the side of a quad opposite its
+  // geometric normal: a ray arriving from there leaves the material (relative index 1 / ior).
+  if (m.type == MATERIAL_REFRACTIVE && dot(hit.normal, wo) < 0.0) m.ior = 1.0 / m.ior;
+#endif
+  bool delta = is_delta_material(m);
+#if !defined(GLINT_NO_LIGHT_SAMPLING)
+  if (light_sampling && !delta) {
+    path.radiance += path.throughput * direct_light(m, p, n, wo, hit.error_scale, path.bounces);
+  }
+#endif
+  float u_lobe = sample_1d(bsdf_dimension(path.bounces));
+  vec2 u = sample_2d(bsdf_dimension(path.bounces));
+  BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
+  if (!s.valid) return false;
+  path.throughput *= s.weight;
+  if (max_component(path.throughput) <= 0.0) return false;
+  // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it
+  // finds is the one next-event estimation at last_p aimed at, along the same direction.
+  // (A refractive surface bends the ray and blocks shadow rays: its delta lobes are vertices
+  // with last_delta, so the light they find has weight 1.)
+  path.ray = Ray(offset_surface_point(p, dot(s.wi, n) > 0.0 ? n : -n, hit.error_scale), s.wi);
+#if !defined(GLINT_NO_REFRACTIVE)
+  if (m.type == MATERIAL_REFRACTIVE && dot(s.wi, n) < 0.0) path.eta_scale *= m.ior * m.ior;
+#endif
+  if (!(s.delta && dot(s.wi, n) < 0.0 && m.type == MATERIAL_TRANSPARENT)) {
+    path.last_p = path.ray.origin;
+    path.last_pdf = s.pdf;
+    path.last_delta = s.delta;
+  }
+  ++path.bounces;
+  if (u_russian_roulette && path.bounces >= ROULETTE_START) {
+    // Survive with probability max(throughput) eta_scale (at most 1); survivors carry 1/q more.
+    float q = min(1.0, max_component(path.throughput) * path.eta_scale);
+    if (rand() >= q) return false;
+    path.throughput /= q;
+  }
+  return true;
 }
 
 // Whether adaptive sampling adds samples to this pixel in this pass. The allocation that
@@ -653,6 +664,19 @@ bool adaptive_pixel_active(vec4 accumulation, vec4 compensation, vec3 variance) 
   float finite = taken - accumulation.a;
   float r = estimated_pixel_relmse(accumulation.rgb, variance, finite);
   return r < 0.0 || r / finite >= u_adaptive_threshold;  // no estimate yet: sample
+}
+
+// Sets the per-sample random state of sample `index` (of the pixel's sequence, before
+// u_first_sample) and returns its camera path.
+PathState start_sample(CameraFrame cam, ivec2 pixel, uint index) {
+  g_sample_index = u_first_sample + index;
+  g_rng = rng_seed(uint(pixel.x), uint(pixel.y), g_sample_index, u_seed);
+  if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
+  g_incomplete = false;
+  vec2 jitter = sample_2d(0u);
+  vec2 film = (vec2(float(pixel.x), float(pixel.y)) + jitter) / vec2(u_resolution);
+  vec2 lens = sample_2d(1u);
+  return start_path(camera_ray(cam, film, lens));
 }
 
 // Adds u_samples_per_pass samples to the pixel's running mean and variance: `accumulation`
@@ -688,15 +712,16 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   vec3 shifted_sum = vec3(0.0);
   vec3 shifted_square_sum = vec3(0.0);
   int finite_count = 0;
-  for (int s = 0; s < u_samples_per_pass; ++s) {
-    g_sample_index = u_first_sample + samples_before + uint(s);
-    g_rng = rng_seed(uint(pixel.x), row, g_sample_index, u_seed);
-    if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
-    g_incomplete = false;
-    vec2 jitter = sample_2d(0u);
-    vec2 film = (vec2(float(pixel.x), float(row)) + jitter) / vec2(u_resolution);
-    vec2 lens = sample_2d(1u);
-    vec3 l = trace_path(camera_ray(cam, film, lens));
+  // Path regeneration: one loop over the pass's bounces, in which a lane whose path has ended
+  // starts its next sample. A SIMD group (8 lanes on llvmpipe) runs each iteration while any
+  // lane is active, so with a loop per sample every sample would cost the longest path of the
+  // group; here a lane waits only at the end of the pass. Each sample is the same (its random
+  // numbers, its arithmetic) as when traced alone, and the samples are added in order.
+  int s = 0;
+  PathState path = start_sample(cam, pixel, samples_before);
+  for (;;) {
+    if (continue_path(path)) continue;
+    vec3 l = path.radiance;
     // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
     float lum = luminance(l);
     if (u_clamp > 0.0 && lum > u_clamp) l *= u_clamp / lum;
@@ -707,6 +732,8 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
       shifted_square_sum += (l - shift) * (l - shift);
       ++finite_count;
     }
+    if (++s == u_samples_per_pass) break;
+    path = start_sample(cam, pixel, samples_before + uint(s));
   }
   float discarded = previous.a + float(u_samples_per_pass - finite_count);
   float taken = float(samples_before) + float(u_samples_per_pass);

@@ -81,7 +81,7 @@ TEST(GlRefractive, ClearBallInAFurnaceIsTheEnvironment) {
 
 // With Russian roulette on, the clear ball is still exactly the environment, every sample: a
 // path inside it carries 1 / ior^2 of its weight, which the roulette's survival probability
-// undoes (eta_scale in trace_path), so no path is ever killed or reweighted. Without that term
+// undoes (eta_scale in continue_path), so no path is ever killed or reweighted. Without that term
 // a path inside the ball survives each roulette step with probability 1 / ior^2, and the worst
 // pixel was 3.9% off for ior 1.5 and 15% for 2.4 (ior 0.8 < 1 keeps survival at 1 either way).
 TEST(GlRefractive, RouletteLeavesAClearBallInAFurnaceExact) {
