@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/quad_shape.h"
+
 namespace glint {
 namespace {
 
@@ -30,22 +32,23 @@ double quad_area(const Quad& q) {
 // last entry exactly 1 whatever the number of lights.
 void add_lights(const Scene& scene, PackedScene& packed) {
   std::vector<double> power;
-  auto consider = [&](int kind, int index, const std::string& material, double area, glm::ivec4& slot) {
+  auto consider = [&](int kind, int index, const std::string& material, double area, bool parallelogram,
+                      glm::ivec4& slot) {
     const Material& m = scene.materials[static_cast<size_t>(material_index(scene, material))];
     double p = emitter_power(m.emission, area);
     if (!(p > 0)) return;
     slot.y = static_cast<int>(packed.lights.size());
-    packed.lights.push_back({glm::ivec4(kind, index, 0, 0), glm::vec4(0)});
+    packed.lights.push_back({glm::ivec4(kind, index, parallelogram ? 1 : 0, 0), glm::vec4(0)});
     power.push_back(p);
   };
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
     consider(0, static_cast<int>(i), s.material, 4.0 * 3.14159265358979 * double(s.radius) * s.radius,
-             packed.spheres[i].material);
+             false, packed.spheres[i].material);
   }
   for (size_t i = 0; i < scene.quads.size(); ++i)
     consider(1, static_cast<int>(i), scene.quads[i].material, quad_area(scene.quads[i]),
-             packed.quads[i].material);
+             quad_is_parallelogram(scene.quads[i].corners), packed.quads[i].material);
   double total = 0;
   for (double p : power) total += p;
   double running = 0;

@@ -35,7 +35,8 @@ struct GpuMaterial {
 // An emitting sphere or quad for next-event estimation. The shader picks one by binary search
 // on `cdf` and needs `pdf` again when a BSDF-sampled ray hits the same shape (MIS).
 struct GpuLight {
-  glm::ivec4 shape;  // x: 0 sphere, 1 quad; y: index into spheres or quads
+  glm::ivec4 shape;  // x: 0 sphere, 1 quad; y: index into spheres or quads; z: 1 for a
+                     // parallelogram quad (quad_is_parallelogram), else 0
   glm::vec4 select;  // x: pdf of picking this light, y: cdf (exactly 1 for the last)
 };
 

@@ -24,4 +24,12 @@ bool quad_is_planar_convex(const std::array<glm::vec3, 4>& corners) {
   return true;
 }
 
+bool quad_is_parallelogram(const std::array<glm::vec3, 4>& corners) {
+  const glm::dvec3 p0(corners[0]), p1(corners[1]), p2(corners[2]), p3(corners[3]);
+  const double area2 = glm::length(glm::cross(p1 - p0, p2 - p0));
+  if (!(area2 > 0.0) || !std::isfinite(area2)) return false;
+  const double extent = std::max(glm::length(p3 - p0), glm::length(p2 - p1));  // the diagonals
+  return glm::length(p3 - (p1 + p2 - p0)) <= std::ldexp(extent, -21);
+}
+
 }  // namespace glint

@@ -18,4 +18,11 @@ namespace glint {
 // for the second. Computed in double. Degenerate quads (no area) are not planar convex.
 bool quad_is_planar_convex(const std::array<glm::vec3, 4>& corners);
 
+// True when the quad is a parallelogram with area: p3 within 2^-21 of its longer diagonal of
+// p1 + p2 - p0 (rectangles included; the tolerance leaves room for corners rounded to float).
+// Such a light is sampled by the affine map of its two edges (shaders/lib/lights.glsl,
+// sample_parallelogram_light), which covers the quad up to that tolerance: what it misses or
+// adds is a sliver of at most that fraction of the light. Computed in double.
+bool quad_is_parallelogram(const std::array<glm::vec3, 4>& corners);
+
 }  // namespace glint

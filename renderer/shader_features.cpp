@@ -60,6 +60,12 @@ ShaderFeatures scene_features(const Scene& scene) {
   f.has_quads = !scene.quads.empty();
   f.has_general_quads = std::any_of(scene.quads.begin(), scene.quads.end(),
                                     [](const Quad& q) { return !quad_is_planar_convex(q.corners); });
+  f.has_general_quad_lights = std::any_of(scene.quads.begin(), scene.quads.end(), [&](const Quad& q) {
+    const int m = std::max(find_material(scene, q.material), 0);
+    const bool emits = !scene.materials.empty() &&
+                       scene.materials[static_cast<size_t>(m)].emission != glm::vec3(0);
+    return emits && !quad_is_parallelogram(q.corners);
+  });
   f.thin_lens = scene.camera.aperture_radius > 0;
   return f;
 }
@@ -79,6 +85,7 @@ bool covers(const ShaderFeatures& program, const ShaderFeatures& needed) {
          ok(program.has_coverage, needed.has_coverage) &&
          ok(program.has_spheres, needed.has_spheres) && ok(program.has_quads, needed.has_quads) &&
          ok(program.has_general_quads, needed.has_general_quads) &&
+         ok(program.has_general_quad_lights, needed.has_general_quad_lights) &&
          ok(program.loop_traversal, needed.loop_traversal) &&
          ok(program.bvh_traversal, needed.bvh_traversal) &&
          ok(program.pcg_sampler, needed.pcg_sampler) && ok(program.sobol_sampler, needed.sobol_sampler) &&
@@ -107,6 +114,7 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.has_spheres, "GLINT_NO_SPHERES");
   define(f.has_quads, "GLINT_NO_QUADS");
   define(f.has_general_quads, "GLINT_NO_GENERAL_QUADS");
+  define(f.has_general_quad_lights, "GLINT_NO_GENERAL_QUAD_LIGHTS");
   define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
   define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
   if (f.loop_spheres >= 0) {

@@ -30,6 +30,9 @@ struct ShaderFeatures {
   // A quad that is not planar and convex (renderer/quad_shape.h): without one, quads are tested
   // by the cheaper intersect_planar_quad instead of as two triangles.
   bool has_general_quads = true;
+  // An emitting quad that is not a parallelogram (renderer/quad_shape.h): without one, every
+  // quad light is sampled by sample_parallelogram_light and the two-triangle sampler is left out.
+  bool has_general_quad_lights = true;
   uint32_t material_types = 0x1F;  // bit (1 << int(MaterialType)) per type used by a primitive
   // Closest hits by the loop over all shapes, by the BVH (shaders/lib/bvh.glsl). The scene alone
   // does not decide (the render options may force one): scene_features keeps both, and the

@@ -51,7 +51,7 @@ struct GpuMaterial {
 };
 
 struct GpuLight {
-  ivec4 shape;   // x: 0 sphere, 1 quad; y: its index
+  ivec4 shape;   // x: 0 sphere, 1 quad; y: its index; z: 1 for a parallelogram quad
   vec4 select;   // x: pdf of picking it, y: cdf
 };
 
@@ -492,7 +492,10 @@ LightSample sample_light(int i, vec3 origin, vec2 u) {
 #endif
 #if !defined(GLINT_NO_QUADS)
   GpuQuad q = quad_at(l.shape.y);
-  return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+#if !defined(GLINT_NO_GENERAL_QUAD_LIGHTS)
+  if (l.shape.z == 0) return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
+#endif
+  return sample_parallelogram_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, u);
 #endif
 }
 

@@ -1,6 +1,7 @@
 // Light sampling for next-event estimation: spheres (cone of directions, Shirley et al. 1996 /
-// pbrt-v4 Sphere::Sample) and quads (area sampling of the two triangles), their solid-angle
-// pdfs, and Veach's power heuristic. Needs common.glsl and sampling.glsl (basis_from_normal).
+// pbrt-v4 Sphere::Sample) and quads (area sampling of the two triangles, or of a parallelogram
+// as a whole), their solid-angle pdfs, and Veach's power heuristic. Needs common.glsl and
+// sampling.glsl (basis_from_normal).
 #ifndef GLINT_LIGHTS_GLSL
 #define GLINT_LIGHTS_GLSL
 
@@ -134,6 +135,27 @@ LightSample sample_quad_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 u
   vec3 to_y = y - p;
   float dist = length(to_y);
   float pdf = quad_point_pdf(p, v0, m, total, y);
+  if (!(dist > 0.0f) || !(pdf > 0.0f) || isinf(pdf)) return invalid_light_sample();
+  return LightSample(to_y / dist, dist, pdf, true);
+}
+
+// A parallelogram quad (p3 = p1 + p2 - p0, renderer/quad_shape.h) sampled by the affine map
+// y = p0 + u.x (p1 - p0) + u.y (p2 - p0): uniform in area like sample_quad_light, so both have
+// the same density and quad_light_pdf serves both. The map is affine: no triangle choice
+// splitting u.x and no square-root warp squeezing cells towards a corner, so a stratified
+// (Sobol') u stays stratified on the light (continuous maps of low distortion keep the
+// strata's shape; Shirley and Chiu 1997, "A Low Distortion Map Between Disk and Square").
+// Also cheaper: one cross product and no choice.
+LightSample sample_parallelogram_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec2 u) {
+  vec3 e1 = p1 - p0;
+  vec3 e2 = p2 - p0;
+  vec3 m = cross(e1, e2);
+  float area = length(m);
+  if (!(area > 0.0f)) return invalid_light_sample();
+  vec3 y = p0 + u.x * e1 + u.y * e2;
+  vec3 to_y = y - p;
+  float dist = length(to_y);
+  float pdf = quad_point_pdf(p, p0, m, area, y);
   if (!(dist > 0.0f) || !(pdf > 0.0f) || isinf(pdf)) return invalid_light_sample();
   return LightSample(to_y / dist, dist, pdf, true);
 }

@@ -42,7 +42,7 @@ TEST(ShaderFeatures, EmptySceneNeedsNothing) {
             "#define GLINT_NO_THIN_LENS\n#define GLINT_NO_COVERAGE\n#define GLINT_NO_MATTE\n"
             "#define GLINT_NO_REFLECTIVE\n#define GLINT_NO_GLOSSY\n#define GLINT_NO_TRANSPARENT\n"
             "#define GLINT_NO_REFRACTIVE\n#define GLINT_NO_SPHERES\n#define GLINT_NO_QUADS\n"
-            "#define GLINT_NO_GENERAL_QUADS\n");
+            "#define GLINT_NO_GENERAL_QUADS\n#define GLINT_NO_GENERAL_QUAD_LIGHTS\n");
 }
 
 TEST(ShaderFeatures, CornellBox) {
@@ -58,7 +58,7 @@ TEST(ShaderFeatures, CornellBox) {
   EXPECT_EQ(shader_defines(f),
             "#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n#define GLINT_NO_THIN_LENS\n"
             "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n#define GLINT_NO_REFRACTIVE\n"
-            "#define GLINT_NO_GENERAL_QUADS\n");
+            "#define GLINT_NO_GENERAL_QUADS\n#define GLINT_NO_GENERAL_QUAD_LIGHTS\n");
 }
 
 TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
@@ -67,7 +67,8 @@ TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
   ShaderFeatures f = scene_features(load_project(GLINT_SOURCE_DIR "/projects/default.glint"));
   ShaderFeatures expected = generic_features();
   expected.material_types &= ~bit(MaterialType::refractive);
-  expected.has_general_quads = false;  // its quads are rectangles
+  expected.has_general_quads = false;        // its quads are rectangles,
+  expected.has_general_quad_lights = false;  // its lamp too
   EXPECT_EQ(f, expected);
 }
 
@@ -199,6 +200,54 @@ TEST(ShaderFeatures, PlanarConvexQuads) {
   EXPECT_NE(shader_defines(planar_only).find("#define GLINT_NO_GENERAL_QUADS\n"), std::string::npos);
   EXPECT_TRUE(covers(general, planar_only));
   EXPECT_FALSE(covers(planar_only, general));
+}
+
+// Which quad lights the affine sampler may take (renderer/quad_shape.h), and the feature: only
+// emitting quads count.
+TEST(ShaderFeatures, ParallelogramQuadLights) {
+  using C = std::array<glm::vec3, 4>;
+  const C rectangle = {glm::vec3(0, 0, 0), glm::vec3(0, 0, 2), glm::vec3(3, 0, 0), glm::vec3(3, 0, 2)};
+  EXPECT_TRUE(quad_is_parallelogram(rectangle));
+  const C skewed = {glm::vec3(0, 0, 0), glm::vec3(0.5f, 1, 2), glm::vec3(3, 0.25f, 0), glm::vec3(3.5f, 1.25f, 2)};
+  EXPECT_TRUE(quad_is_parallelogram(skewed));
+  C trapezoid = rectangle;
+  trapezoid[3] = glm::vec3(2, 0, 2);
+  EXPECT_FALSE(quad_is_parallelogram(trapezoid));
+  C off = rectangle;
+  off[3].y = 1e-5f;  // 2.8e-6 of the diagonal (sqrt(13)): not within 2^-21
+  EXPECT_FALSE(quad_is_parallelogram(off));
+  off[3].y = 1e-7f;  // within it
+  EXPECT_TRUE(quad_is_parallelogram(off));
+  const C flat = {glm::vec3(0), glm::vec3(1, 0, 0), glm::vec3(2, 0, 0), glm::vec3(3, 0, 0)};
+  EXPECT_FALSE(quad_is_parallelogram(flat));
+  // Parallelograms turned at random, corners rounded to float: nearly all pass.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g;
+  auto unit = [&] { glm::dvec3 v(g(rng), g(rng), g(rng)); return glm::normalize(v); };
+  int passed = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const glm::dvec3 p0 = 2.0 * unit(), e1 = unit(), e2 = unit();
+    passed += quad_is_parallelogram({glm::vec3(p0), glm::vec3(p0 + e1), glm::vec3(p0 + e2), glm::vec3(p0 + e1 + e2)});
+  }
+  EXPECT_GE(passed, 900);
+
+  Scene s;
+  s.materials.push_back(Material{});
+  Material lamp;
+  lamp.name = "lamp";
+  lamp.emission = glm::vec3(4);
+  s.materials.push_back(lamp);
+  s.quads.push_back({.material = "lamp", .corners = rectangle});
+  s.quads.push_back({.corners = trapezoid});  // not emitting: does not count
+  const ShaderFeatures parallelograms = scene_features(s);
+  EXPECT_FALSE(parallelograms.has_general_quad_lights);
+  EXPECT_NE(shader_defines(parallelograms).find("#define GLINT_NO_GENERAL_QUAD_LIGHTS\n"), std::string::npos);
+  s.quads.back().material = "lamp";
+  const ShaderFeatures general = scene_features(s);
+  EXPECT_TRUE(general.has_general_quad_lights);
+  EXPECT_EQ(shader_defines(general).find("GLINT_NO_GENERAL_QUAD_LIGHTS"), std::string::npos);
+  EXPECT_TRUE(covers(general, parallelograms));
+  EXPECT_FALSE(covers(parallelograms, general));
 }
 
 TEST(ShaderFeatures, SamplerDefinesAndCover) {

@@ -373,6 +373,54 @@ TYPED_TEST(ShaderLights, QuadPdfsAtGrazingAnglesAreConsistent) {
   }
 }
 
+// The affine sampler of parallelograms: the same density as the two-triangle sampler (uniform
+// in area), so its directions must follow quad_light_pdf (chi-square, 2e5 samples, as above);
+// and at every sample, the pdf it returns is quad_light_pdf at the point it chose (64 eps), and
+// that point is p0 + u.x e1 + u.y e2 (the map is affine: a stratified u stays stratified).
+TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
+  using L = TypeParam;
+  const std::vector<QuadCase> cases = {
+      // the tilted rectangle of quad_cases, from the front
+      {{0, 0, 0}, {{-1, -0.5, 3}, {-1, 0.7, 3.4}, {1, -0.5, 3}, {1, 0.7, 3.4}}},
+      // a skewed parallelogram seen from behind and from the side
+      {{2.5, 0.3, 4.5}, {{-1, 0, 2}, {-0.2, 1.5, 2.2}, {1.3, 0.1, 2.5}, {2.1, 1.6, 2.7}}},
+  };
+  for (const QuadCase& q : cases) {
+    dvec3 centre = 0.25 * (q.c[0] + q.c[1] + q.c[2] + q.c[3]);
+    dvec3 axis = glm::normalize(centre - q.p);
+    double cos_min = 1;
+    for (dvec3 c : q.c) cos_min = std::min(cos_min, glm::dot(glm::normalize(c - q.p), axis));
+    cos_min = std::cos(std::acos(cos_min) + 0.05);
+    auto sample = [&](glm::dvec2 u, dvec3& w) {
+      auto ls = L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
+                                              L::v2(u.x, u.y));
+      w = to_d(ls.wi);
+      return ls.valid;
+    };
+    DirectionalFit fit = fit_directions(sample, [&](dvec3 w) { return quad_pdf_of_direction<L>(q, w); },
+                                        axis, cos_min, 200000,
+                                        {glm::normalize(q.c[0] - q.p), glm::normalize(q.c[1] - q.p),
+                                         glm::normalize(q.c[2] - q.p), glm::normalize(q.c[3] - q.p)});
+    EXPECT_NEAR(fit.total_probability, 1.0, 1e-3);
+    EXPECT_TRUE(fit.chi2.problem.empty()) << fit.chi2.problem;
+    EXPECT_GE(fit.chi2.p_value, kChiSquareAlpha) << fit.chi2.describe();
+
+    Uniform u(31);
+    for (int i = 0; i < 2000; ++i) {
+      const glm::dvec2 uv(u(), u());
+      auto ls = L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
+                                              L::v2(uv.x, uv.y));
+      ASSERT_TRUE(ls.valid);
+      const dvec3 expected_y = q.c[0] + uv.x * (q.c[1] - q.c[0]) + uv.y * (q.c[2] - q.c[0]);
+      const dvec3 y = q.p + double(ls.dist) * to_d(ls.wi);
+      ASSERT_LE(glm::length(y - expected_y), 64 * L::kEps * 4.0) << i;
+      const double pdf = double(L::quad_light_pdf(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
+                                                  L::v3(q.c[3]), L::v3(expected_y)));
+      ASSERT_TRUE(near_rel(pdf, double(ls.pdf), 64 * L::kEps)) << i << ": " << pdf << " vs " << ls.pdf;
+    }
+  }
+}
+
 // quad_light_pdf picks the triangle a point lies on: on the bent quad the two triangles have
 // different normals, so the pdf at points of each must use that triangle's own.
 TYPED_TEST(ShaderLights, QuadPdfUsesTheTriangleOfThePoint) {
