@@ -288,29 +288,37 @@ std::vector<QuadCase> quad_cases() {
   };
 }
 
-// 2e5 samples against the pdf integrated over (cos theta, phi) cells around the direction to
-// the quad's centre; normalisation to 1e-3 (quadrature tolerance 2e-4 in all).
+// 2e5 directions of `sample_light` (u -> LightSample) against quad_pdf_of_direction, integrated
+// over (cos theta, phi) cells around the direction to the quad's centre; normalisation to 1e-3
+// (quadrature tolerance 2e-4 in all).
+template <class L, class SampleLight>
+void expect_directions_follow_the_quad_pdf(const QuadCase& q, SampleLight sample_light) {
+  dvec3 centre = 0.25 * (q.c[0] + q.c[1] + q.c[2] + q.c[3]);
+  dvec3 axis = glm::normalize(centre - q.p);
+  double cos_min = 1;
+  for (dvec3 c : q.c) cos_min = std::min(cos_min, glm::dot(glm::normalize(c - q.p), axis));
+  cos_min = std::cos(std::acos(cos_min) + 0.05);
+  auto sample = [&](glm::dvec2 u, dvec3& w) {
+    auto ls = sample_light(u);
+    w = to_d(ls.wi);
+    return ls.valid;
+  };
+  DirectionalFit fit = fit_directions(sample, [&](dvec3 w) { return quad_pdf_of_direction<L>(q, w); },
+                                      axis, cos_min, 200000,
+                                      {glm::normalize(q.c[0] - q.p), glm::normalize(q.c[1] - q.p),
+                                       glm::normalize(q.c[2] - q.p), glm::normalize(q.c[3] - q.p)});
+  EXPECT_NEAR(fit.total_probability, 1.0, 1e-3);
+  EXPECT_TRUE(fit.chi2.problem.empty()) << fit.chi2.problem;
+  EXPECT_GE(fit.chi2.p_value, kChiSquareAlpha) << fit.chi2.describe();
+}
+
 TYPED_TEST(ShaderLights, QuadDirectionsFollowThePdf) {
   using L = TypeParam;
   for (const QuadCase& q : quad_cases()) {
-    dvec3 centre = 0.25 * (q.c[0] + q.c[1] + q.c[2] + q.c[3]);
-    dvec3 axis = glm::normalize(centre - q.p);
-    double cos_min = 1;
-    for (dvec3 c : q.c) cos_min = std::min(cos_min, glm::dot(glm::normalize(c - q.p), axis));
-    cos_min = std::cos(std::acos(cos_min) + 0.05);
-    auto sample = [&](glm::dvec2 u, dvec3& w) {
-      auto ls = L::sample_quad_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
-                                     L::v3(q.c[3]), L::v2(u.x, u.y));
-      w = to_d(ls.wi);
-      return ls.valid;
-    };
-    DirectionalFit fit = fit_directions(sample, [&](dvec3 w) { return quad_pdf_of_direction<L>(q, w); },
-                                        axis, cos_min, 200000,
-                                        {glm::normalize(q.c[0] - q.p), glm::normalize(q.c[1] - q.p),
-                                         glm::normalize(q.c[2] - q.p), glm::normalize(q.c[3] - q.p)});
-    EXPECT_NEAR(fit.total_probability, 1.0, 1e-3);
-    EXPECT_TRUE(fit.chi2.problem.empty()) << fit.chi2.problem;
-    EXPECT_GE(fit.chi2.p_value, kChiSquareAlpha) << fit.chi2.describe();
+    expect_directions_follow_the_quad_pdf<L>(q, [&](glm::dvec2 u) {
+      return L::sample_quad_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]), L::v3(q.c[3]),
+                                  L::v2(u.x, u.y));
+    });
   }
 }
 
@@ -374,7 +382,7 @@ TYPED_TEST(ShaderLights, QuadPdfsAtGrazingAnglesAreConsistent) {
 }
 
 // The affine sampler of parallelograms: the same density as the two-triangle sampler (uniform
-// in area), so its directions must follow quad_light_pdf (chi-square, 2e5 samples, as above);
+// in area), so its directions must follow quad_light_pdf (the chi-square above);
 // and at every sample, the pdf it returns is quad_light_pdf at the point it chose (64 eps), and
 // that point is p0 + u.x e1 + u.y e2 (the map is affine: a stratified u stays stratified).
 TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
@@ -386,24 +394,10 @@ TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
       {{2.5, 0.3, 4.5}, {{-1, 0, 2}, {-0.2, 1.5, 2.2}, {1.3, 0.1, 2.5}, {2.1, 1.6, 2.7}}},
   };
   for (const QuadCase& q : cases) {
-    dvec3 centre = 0.25 * (q.c[0] + q.c[1] + q.c[2] + q.c[3]);
-    dvec3 axis = glm::normalize(centre - q.p);
-    double cos_min = 1;
-    for (dvec3 c : q.c) cos_min = std::min(cos_min, glm::dot(glm::normalize(c - q.p), axis));
-    cos_min = std::cos(std::acos(cos_min) + 0.05);
-    auto sample = [&](glm::dvec2 u, dvec3& w) {
-      auto ls = L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
-                                              L::v2(u.x, u.y));
-      w = to_d(ls.wi);
-      return ls.valid;
-    };
-    DirectionalFit fit = fit_directions(sample, [&](dvec3 w) { return quad_pdf_of_direction<L>(q, w); },
-                                        axis, cos_min, 200000,
-                                        {glm::normalize(q.c[0] - q.p), glm::normalize(q.c[1] - q.p),
-                                         glm::normalize(q.c[2] - q.p), glm::normalize(q.c[3] - q.p)});
-    EXPECT_NEAR(fit.total_probability, 1.0, 1e-3);
-    EXPECT_TRUE(fit.chi2.problem.empty()) << fit.chi2.problem;
-    EXPECT_GE(fit.chi2.p_value, kChiSquareAlpha) << fit.chi2.describe();
+    expect_directions_follow_the_quad_pdf<L>(q, [&](glm::dvec2 u) {
+      return L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
+                                           L::v2(u.x, u.y));
+    });
 
     Uniform u(31);
     for (int i = 0; i < 2000; ++i) {
