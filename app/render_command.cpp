@@ -119,6 +119,8 @@ const char* const kUsage =
 
 // The sample cap of --target-error when neither --spp nor --time is given.
 constexpr int64_t kTargetErrorDefaultCap = 4096;
+// The pixel samples of a render's first pass, whose time sizes the passes after it.
+constexpr int64_t kFirstPassPixelSamples = 1 << 17;
 
 struct Options {
   std::string project;
@@ -449,6 +451,13 @@ int run_render_command(int argc, char** argv) {
       std::fprintf(stderr, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
                    o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
     session_options.checkpoints = log.has_value();
+    // No frames to keep responsive: after the first pass, passes as long as the policy allows.
+    session_options.batch.grow_by_rate = true;
+    // A first pass of about kFirstPassPixelSamples samples in all (tens of milliseconds on
+    // llvmpipe), not one sample per pixel: a small image's one-sample pass leaves most lanes
+    // idle while the longest path of their group finishes.
+    session_options.batch.first_batch = static_cast<int>(
+        std::clamp<int64_t>(kFirstPassPixelSamples / (int64_t(width) * height), 1, 16));
     RenderSession session(renderer, session_options);
     const bool interactive = isatty(STDERR_FILENO);
     ImageMetrics last_metrics;

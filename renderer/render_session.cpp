@@ -151,8 +151,11 @@ void RenderSession::end_pass() {
     estimated_relmse_ = e.known() ? e.relmse : -1;
   }
   const BatchPolicy& p = options_.batch;
-  if (pass_samples_ == batch_ && t < p.grow_below && batch_ < p.max_batch) batch_ = std::min(batch_ * 2, p.max_batch);
-  else if (t > p.shrink_above && batch_ > 1) batch_ /= 2;
+  if (pass_samples_ == batch_ && t < p.grow_below && batch_ < p.max_batch) {
+    double next = 2.0 * batch_;
+    if (p.grow_by_rate && t > 0) next = std::max(next, std::floor(batch_ * (p.grow_below / t)));
+    batch_ = static_cast<int>(std::min(next, double(p.max_batch)));
+  } else if (t > p.shrink_above && batch_ > 1) batch_ /= 2;
   at_checkpoint_ = checkpoint_ > 0 && samples() == checkpoint_;
   if (at_checkpoint_) checkpoint_ = next_checkpoint(samples(), sample_cap(options_.target));
 }

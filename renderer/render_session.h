@@ -33,12 +33,18 @@ const char* stop_reason_text(StopReason reason);  // "sample count", "time", "er
 
 // How many samples a pass traces. A batch starts small and doubles while a full pass takes
 // less than grow_below seconds (fewer passes, the same samples), up to max_batch; it halves
-// when a pass takes longer than shrink_above.
+// when a pass takes longer than shrink_above. With grow_by_rate it grows instead to the batch
+// that the last pass's rate says takes grow_below seconds (at least double): the first pass
+// measures, the next ones are full. Few large passes are faster than many small ones: a
+// pass's draws trace up to the loop budget's samples per pixel, and with path regeneration a
+// lane whose path ends starts the pixel's next sample, so a one-sample draw leaves the lanes
+// of short paths idle (bench/THROUGHPUT.md).
 struct BatchPolicy {
   int first_batch = 1;
   int max_batch = 1024;
   double grow_below = 0.25;
   double shrink_above = std::numeric_limits<double>::infinity();
+  bool grow_by_rate = false;
 };
 
 struct RenderSessionOptions {

@@ -64,6 +64,21 @@ TEST_F(SessionTest, BatchStopsAtItsMaximumAndHalvesAfterSlowPasses) {
   EXPECT_EQ(run(shrinks), (std::vector<int64_t>{8, 10}));  // 8, then the halved batch capped at the target
 }
 
+// Growing by rate, the second pass is the batch that the first one's rate says fits in
+// grow_below seconds (here far more than max_batch, which caps it), not twice the first.
+TEST_F(SessionTest, BatchGrownByRateJumpsToTheBatchThatFits) {
+  RenderSessionOptions o;
+  o.target.samples = 200;
+  o.batch = {.first_batch = 1, .max_batch = 64, .grow_below = 1e9, .grow_by_rate = true};
+  RenderSession jumps(renderer, o);
+  EXPECT_EQ(run(jumps), (std::vector<int64_t>{1, 65, 129, 193, 200}));
+
+  renderer.sync(test::empty_scene(), 8, 8);
+  o.batch.grow_by_rate = false;  // doubling, for comparison
+  RenderSession doubles(renderer, o);
+  EXPECT_EQ(run(doubles), (std::vector<int64_t>{1, 3, 7, 15, 31, 63, 127, 191, 200}));
+}
+
 // Every power of two and the target are reached exactly, whatever the batch; passes between
 // them are not checkpoints.
 TEST_F(SessionTest, CheckpointsAreHitExactly) {
