@@ -38,7 +38,8 @@ void add_lights(const Scene& scene, PackedScene& packed) {
     double p = emitter_power(m.emission, area);
     if (!(p > 0)) return;
     slot.y = static_cast<int>(packed.lights.size());
-    packed.lights.push_back({glm::ivec4(kind, index, parallelogram ? 1 : 0, 0), glm::vec4(0)});
+    packed.lights.push_back({glm::ivec4(kind, index, parallelogram ? 1 : 0, 0),
+                             glm::vec4(0, 0, kind == 1 ? static_cast<float>(area) : 0.0f, 0)});
     power.push_back(p);
   };
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
@@ -55,7 +56,8 @@ void add_lights(const Scene& scene, PackedScene& packed) {
   for (size_t i = 0; i < power.size(); ++i) {
     running += power[i];
     packed.lights[i].select = glm::vec4(static_cast<float>(power[i] / total),
-                                        i + 1 == power.size() ? 1.0f : static_cast<float>(running / total), 0, 0);
+                                        i + 1 == power.size() ? 1.0f : static_cast<float>(running / total),
+                                        packed.lights[i].select.z, 0);
   }
 }
 

@@ -37,7 +37,8 @@ struct GpuMaterial {
 struct GpuLight {
   glm::ivec4 shape;  // x: 0 sphere, 1 quad; y: index into spheres or quads; z: 1 for a
                      // parallelogram quad (quad_is_parallelogram), else 0
-  glm::vec4 select;  // x: pdf of picking this light, y: cdf (exactly 1 for the last)
+  glm::vec4 select;  // x: pdf of picking this light, y: cdf (exactly 1 for the last), z: a
+                     // quad's area (with GpuQuad::normal, its pdf without the other corners)
 };
 
 struct TextureLayer {

@@ -52,7 +52,7 @@ struct GpuMaterial {
 
 struct GpuLight {
   ivec4 shape;   // x: 0 sphere, 1 quad; y: its index; z: 1 for a parallelogram quad
-  vec4 select;   // x: pdf of picking it, y: cdf
+  vec4 select;   // x: pdf of picking it, y: cdf, z: a quad's area
 };
 
 // The samplers, in a fixed order: each is given the next sampler slot in declaration order
@@ -401,8 +401,12 @@ float light_pdf(int i, vec3 p, vec3 y) {
 #endif
 #if !defined(GLINT_NO_QUADS)
   if (l.shape.x != 0) {
-    GpuQuad q = quad_at(l.shape.y);
-    shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
+    GpuQuad q = quad_at(l.shape.y);  // only the texels read are fetched
+#if !defined(GLINT_NO_GENERAL_QUAD_LIGHTS)
+    if (l.shape.z == 0) shape_pdf = quad_light_pdf(p, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, y);
+    else
+#endif
+      shape_pdf = parallelogram_light_pdf(p, q.p0.xyz, q.normal.xyz, l.select.z, y);
   }
 #endif
   return (1.0 - u_env_select) * l.select.x * shape_pdf;
@@ -495,7 +499,7 @@ LightSample sample_light(int i, vec3 origin, vec2 u) {
 #if !defined(GLINT_NO_GENERAL_QUAD_LIGHTS)
   if (l.shape.z == 0) return sample_quad_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.p3.xyz, u);
 #endif
-  return sample_parallelogram_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, u);
+  return sample_parallelogram_light(origin, q.p0.xyz, q.p1.xyz, q.p2.xyz, q.normal.xyz, l.select.z, u);
 #endif
 }
 

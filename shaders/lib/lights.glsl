@@ -89,17 +89,22 @@ float sphere_light_pdf(vec3 p, vec3 center, float radius, vec3 y) {
   return isinf(pdf) ? 0.0f : pdf;
 }
 
-// The solid-angle pdf of area sampling at point y of the triangle with first vertex v0 and
-// unnormalised normal m, over the total area of the quad. The cosine at y is taken from the
+// The solid-angle pdf of area sampling at point y of a plane with point v0 and unit normal,
+// over the total area of the shape sampled in it (plane_point_pdf); quad_point_pdf takes the
+// plane of a triangle with first vertex v0 and unnormalised normal m. The cosine at y is taken from the
 // height of p above the triangle's plane, dot(n, v0 - p), not from y - p: y carries rounding
 // of the corners' size, which swamps the height when p is almost in the plane.
-float quad_point_pdf(vec3 p, vec3 v0, vec3 m, float total_area, vec3 y) {
+float plane_point_pdf(vec3 p, vec3 v0, vec3 unit_normal, float total_area, vec3 y) {
   vec3 to_y = y - p;
   float dist2 = dot(to_y, to_y);
-  float height = abs(dot(normalize(m), v0 - p));
+  float height = abs(dot(unit_normal, v0 - p));
   float cos_y = height * inversesqrt(dist2);
   if (!(dist2 > 0.0f) || !(cos_y > 0.0f) || !(total_area > 0.0f)) return 0.0f;
   return dist2 / (total_area * cos_y);
+}
+
+float quad_point_pdf(vec3 p, vec3 v0, vec3 m, float total_area, vec3 y) {
+  return plane_point_pdf(p, v0, normalize(m), total_area, y);
 }
 
 // The quad (p0, p1, p2, p3) is the triangles (p0, p1, p2) and (p1, p3, p2) (docs/DESIGN.md §3): a
@@ -145,19 +150,24 @@ LightSample sample_quad_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 u
 // splitting u.x and no square-root warp squeezing cells towards a corner, so a stratified
 // (Sobol') u stays stratified on the light (continuous maps of low distortion keep the
 // strata's shape; Shirley and Chiu 1997, "A Low Distortion Map Between Disk and Square").
-// Also cheaper: one cross product and no choice.
-LightSample sample_parallelogram_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec2 u) {
-  vec3 e1 = p1 - p0;
-  vec3 e2 = p2 - p0;
-  vec3 m = cross(e1, e2);
-  float area = length(m);
+// Also cheaper: no choice, and the unit normal and the area come from the scene's tables
+// (computed once, in double), so parallelogram_light_pdf can give the same pdf from the light
+// table without the other corners.
+LightSample sample_parallelogram_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 unit_normal, float area,
+                                       vec2 u) {
   if (!(area > 0.0f)) return invalid_light_sample();
-  vec3 y = p0 + u.x * e1 + u.y * e2;
+  vec3 y = p0 + u.x * (p1 - p0) + u.y * (p2 - p0);
   vec3 to_y = y - p;
   float dist = length(to_y);
-  float pdf = quad_point_pdf(p, p0, m, area, y);
+  float pdf = plane_point_pdf(p, p0, unit_normal, area, y);
   if (!(dist > 0.0f) || !(pdf > 0.0f) || isinf(pdf)) return invalid_light_sample();
   return LightSample(to_y / dist, dist, pdf, true);
+}
+
+// The pdf sample_parallelogram_light gives to the direction from p towards y, y a point on the
+// parallelogram (a ray hit): quad_light_pdf's value, from p0, the unit normal and the area alone.
+float parallelogram_light_pdf(vec3 p, vec3 p0, vec3 unit_normal, float area, vec3 y) {
+  return plane_point_pdf(p, p0, unit_normal, area, y);
 }
 
 // The pdf sample_quad_light gives to the direction from p towards y, y a point on the quad

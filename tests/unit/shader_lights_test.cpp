@@ -383,8 +383,10 @@ TYPED_TEST(ShaderLights, QuadPdfsAtGrazingAnglesAreConsistent) {
 
 // The affine sampler of parallelograms: the same density as the two-triangle sampler (uniform
 // in area), so its directions must follow quad_light_pdf (the chi-square above);
-// and at every sample, the pdf it returns is quad_light_pdf at the point it chose (64 eps), and
-// that point is p0 + u.x e1 + u.y e2 (the map is affine: a stratified u stays stratified).
+// and at every sample, the pdf it returns is quad_light_pdf at the point it chose (64 eps), as
+// is parallelogram_light_pdf (from p0, the unit normal and the area that the scene's tables
+// hold, computed in double as renderer/gpu_scene.cpp does), and that point is
+// p0 + u.x e1 + u.y e2 (the map is affine: a stratified u stays stratified).
 TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
   using L = TypeParam;
   const std::vector<QuadCase> cases = {
@@ -394,16 +396,19 @@ TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
       {{2.5, 0.3, 4.5}, {{-1, 0, 2}, {-0.2, 1.5, 2.2}, {1.3, 0.1, 2.5}, {2.1, 1.6, 2.7}}},
   };
   for (const QuadCase& q : cases) {
+    const dvec3 m = glm::cross(q.c[1] - q.c[0], q.c[2] - q.c[0]);
+    const auto normal = L::v3(glm::normalize(m));
+    const auto area = typename L::Real(glm::length(m));
     expect_directions_follow_the_quad_pdf<L>(q, [&](glm::dvec2 u) {
       return L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
-                                           L::v2(u.x, u.y));
+                                           normal, area, L::v2(u.x, u.y));
     });
 
     Uniform u(31);
     for (int i = 0; i < 2000; ++i) {
       const glm::dvec2 uv(u(), u());
       auto ls = L::sample_parallelogram_light(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
-                                              L::v2(uv.x, uv.y));
+                                              normal, area, L::v2(uv.x, uv.y));
       ASSERT_TRUE(ls.valid);
       const dvec3 expected_y = q.c[0] + uv.x * (q.c[1] - q.c[0]) + uv.y * (q.c[2] - q.c[0]);
       const dvec3 y = q.p + double(ls.dist) * to_d(ls.wi);
@@ -411,6 +416,9 @@ TYPED_TEST(ShaderLights, ParallelogramSamplesFollowTheQuadPdf) {
       const double pdf = double(L::quad_light_pdf(L::v3(q.p), L::v3(q.c[0]), L::v3(q.c[1]), L::v3(q.c[2]),
                                                   L::v3(q.c[3]), L::v3(expected_y)));
       ASSERT_TRUE(near_rel(pdf, double(ls.pdf), 64 * L::kEps)) << i << ": " << pdf << " vs " << ls.pdf;
+      const double table_pdf =
+          double(L::parallelogram_light_pdf(L::v3(q.p), L::v3(q.c[0]), normal, area, L::v3(expected_y)));
+      ASSERT_TRUE(near_rel(table_pdf, double(ls.pdf), 64 * L::kEps)) << i << ": " << table_pdf << " vs " << ls.pdf;
     }
   }
 }

@@ -106,6 +106,7 @@ namespace {
     GLINT_SHADER_FWD(NS, sphere_light_pdf)                                                     \
     GLINT_SHADER_FWD(NS, sample_quad_light)                                                    \
     GLINT_SHADER_FWD(NS, sample_parallelogram_light)                                           \
+    GLINT_SHADER_FWD(NS, parallelogram_light_pdf)                                              \
     GLINT_SHADER_FWD(NS, quad_light_pdf)                                                       \
     GLINT_SHADER_FWD(NS, power_heuristic)                                                      \
     GLINT_SHADER_FWD(NS, sample_environment)                                                   \
