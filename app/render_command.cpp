@@ -451,13 +451,16 @@ int run_render_command(int argc, char** argv) {
       std::fprintf(stderr, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
                    o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
     session_options.checkpoints = log.has_value();
-    // No frames to keep responsive: after the first pass, passes as long as the policy allows.
-    session_options.batch.grow_by_rate = true;
-    // A first pass of about kFirstPassPixelSamples samples in all (tens of milliseconds on
+    // No frames to keep responsive: after the first pass, passes as long as the policy allows,
+    // and a first pass of about kFirstPassPixelSamples samples in all (tens of milliseconds on
     // llvmpipe), not one sample per pixel: a small image's one-sample pass leaves most lanes
-    // idle while the longest path of their group finishes.
-    session_options.batch.first_batch = static_cast<int>(
-        std::clamp<int64_t>(kFirstPassPixelSamples / (int64_t(width) * height), 1, 16));
+    // idle while the longest path of their group finishes. Not with --time, whose passes
+    // should not overshoot a short time by a quarter of a second.
+    if (!o.seconds) {
+      session_options.batch.grow_by_rate = true;
+      session_options.batch.first_batch = static_cast<int>(
+          std::clamp<int64_t>(kFirstPassPixelSamples / (int64_t(width) * height), 1, 16));
+    }
     RenderSession session(renderer, session_options);
     const bool interactive = isatty(STDERR_FILENO);
     ImageMetrics last_metrics;
