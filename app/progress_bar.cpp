@@ -6,23 +6,22 @@
 
 namespace glint {
 
-std::string format_progress(int64_t done, int64_t total, double seconds, const char* unit,
+std::string format_progress(double done, int64_t total, double seconds, const char* unit,
                             int bar_width) {
-  double fraction = total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 0.0;
+  double fraction = total > 0 ? done / static_cast<double>(total) : 0.0;
   fraction = fraction < 0 ? 0 : (fraction > 1 ? 1 : fraction);
   int filled = static_cast<int>(std::lround(fraction * bar_width));
   std::string bar = "[" + std::string(filled, '#') + std::string(bar_width - filled, ' ') + "]";
-  double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
+  double rate = seconds > 0 ? done / seconds : 0.0;
+  const long long whole = static_cast<long long>(std::floor(done));
   char tail[128];
   if (rate > 0 && done < total) {
-    long eta = std::lround(static_cast<double>(total - done) / rate);
+    long eta = std::lround((static_cast<double>(total) - done) / rate);
     std::snprintf(tail, sizeof tail, " %lld/%lld %s  %.1f %s/s  ETA %ld:%02ld",
-                  static_cast<long long>(done), static_cast<long long>(total), unit, rate, unit,
-                  eta / 60, eta % 60);
+                  whole, static_cast<long long>(total), unit, rate, unit, eta / 60, eta % 60);
   } else {
     std::snprintf(tail, sizeof tail, " %lld/%lld %s  %.1f %s/s  %.1f s",
-                  static_cast<long long>(done), static_cast<long long>(total), unit, rate, unit,
-                  seconds);
+                  whole, static_cast<long long>(total), unit, rate, unit, seconds);
   }
   return bar + tail;
 }

@@ -6,8 +6,9 @@
 
 namespace glint {
 
-// "[########            ] 32/64 spp  12.5 spp/s  ETA 0:03"
-std::string format_progress(int64_t done, int64_t total, double seconds, const char* unit,
+// "[########            ] 32/64 spp  12.5 spp/s  ETA 0:03"; `done` may be fractional (a pass
+// part traced), shown rounded down.
+std::string format_progress(double done, int64_t total, double seconds, const char* unit,
                             int bar_width = 24);
 
 // For a time budget: "[####        ] 3.2/10.0 s  45 spp  14.1 spp/s"

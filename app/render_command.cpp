@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "app/command_line.h"
@@ -119,8 +120,13 @@ const char* const kUsage =
 
 // The sample cap of --target-error when neither --spp nor --time is given.
 constexpr int64_t kTargetErrorDefaultCap = 4096;
-// The pixel samples of a render's first pass, whose time sizes the passes after it.
+// The pixel samples of a render's first pass, whose time sizes the passes after it; the
+// time a pass grows to (traced in bands, or untiled on an image of one band), and the time of
+// one band of its rows (without --time).
 constexpr int64_t kFirstPassPixelSamples = 1 << 17;
+constexpr double kPassSeconds = 4.0;
+constexpr double kUntiledPassSeconds = 1.0;
+constexpr double kBandSeconds = 0.25;
 
 struct Options {
   std::string project;
@@ -451,13 +457,22 @@ int run_render_command(int argc, char** argv) {
       std::fprintf(stderr, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
                    o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
     session_options.checkpoints = log.has_value();
-    // No frames to keep responsive: after the first pass, passes as long as the policy allows,
-    // and a first pass of about kFirstPassPixelSamples samples in all (tens of milliseconds on
-    // llvmpipe), not one sample per pixel: a small image's one-sample pass leaves most lanes
-    // idle while the longest path of their group finishes. Not with --time, whose passes
-    // should not overshoot a short time by a quarter of a second.
-    if (!o.seconds) {
+    // Passes of many samples, traced in bands of rows: a pass's draws trace up to the loop
+    // budget's samples per pixel, and in a draw of few samples the lanes whose paths end early
+    // wait for the longest path of their SIMD group (path regeneration refills them only with
+    // the pixel's further samples). So: a first pass of about kFirstPassPixelSamples samples in
+    // all (tens of milliseconds on llvmpipe), then passes grown by rate to about
+    // kPassSeconds, each traced in bands of about kBandSeconds so that the progress bar moves.
+    // Not with --time, whose target is checked between passes only: there passes start at one
+    // sample and double while under a quarter of a second, untiled.
+    const bool long_passes = !o.seconds;
+    if (long_passes) {
+      // Bands only where the image holds more than one (else untiled, and shorter passes so
+      // that the bar still moves).
+      session_options.band_rows = band_rows_for_threads(width, static_cast<int>(std::thread::hardware_concurrency()));
+      session_options.tiled = session_options.band_rows < height;
       session_options.batch.grow_by_rate = true;
+      session_options.batch.grow_below = session_options.tiled ? kPassSeconds : kUntiledPassSeconds;
       session_options.batch.first_batch = static_cast<int>(
           std::clamp<int64_t>(kFirstPassPixelSamples / (int64_t(width) * height), 1, 16));
     }
@@ -465,9 +480,9 @@ int run_render_command(int argc, char** argv) {
     const bool interactive = isatty(STDERR_FILENO);
     ImageMetrics last_metrics;
     double last_report = -1e9;
-    // After each pass, outside the session's clock: a checkpoint's read-back and metrics are
+    // After each step, outside the session's clock: a checkpoint's read-back and metrics are
     // not rendering (and do not eat into --time).
-    session.run([&](RenderSession& s) {
+    auto after_step = [&](RenderSession& s) {
       const double elapsed = s.seconds();
       if (log && s.at_checkpoint()) {
         double gpu = renderer.trace_gpu_seconds();
@@ -483,15 +498,23 @@ int run_render_command(int argc, char** argv) {
       }
       if (interactive || elapsed - last_report >= 5.0) {
         std::string line = o.seconds ? format_time_progress(elapsed, *o.seconds, s.samples())
-                                     : format_progress(s.samples(), s.options().target.samples, elapsed, "spp");
+                                     : format_progress(s.traced_samples(), s.options().target.samples, elapsed, "spp");
         // The estimated error beside the bar: the session's own when it targets one, else a
         // fresh one (a small read-back; at most once a second when not on a terminal).
-        const double estimated = o.target_error ? s.estimated_relmse() : renderer.estimate_error().relmse;
+        double estimated = s.estimated_relmse();  // -1: not known (fewer than two samples)
+        if (!o.target_error && s.samples() > 0) {
+          const ErrorEstimate e = renderer.estimate_error();
+          estimated = e.known() ? e.relmse : -1;
+        }
         line += format_error_estimate(estimated, o.target_error.value_or(0));
         std::fprintf(stderr, interactive ? "\r%s\033[K" : "%s\n", line.c_str());
         last_report = elapsed;
       }
-    });
+    };
+    while (!session.done()) {
+      session.step(long_passes ? kBandSeconds : 0);
+      after_step(session);
+    }
     double total = session.seconds();
     if (interactive) std::fputc('\n', stderr);
     if (o.target_error) {

@@ -102,7 +102,7 @@ std::optional<std::filesystem::path> default_backend_cache_file() {
 
 BackendTiming time_backends() {
   const Scene scene = timing_scene();
-  constexpr int kSize = 128, kRounds = 3, kSpp = 2;
+  constexpr int kSize = 128, kRounds = 5, kSpp = 8;  // each timing tens of ms on llvmpipe
   std::unique_ptr<GpuRenderer> renderers[2];
   for (int b = 0; b < 2; ++b) {
     GpuRendererOptions options;

@@ -35,6 +35,13 @@ int64_t sample_cap(const RenderTarget& t) {
 
 }  // namespace
 
+int band_rows_for_threads(int width, int threads) {
+  constexpr int kTile = 64;
+  const int tiles_per_row = std::max(1, (width + kTile - 1) / kTile);
+  const int tile_rows = (4 * std::max(1, threads) + tiles_per_row - 1) / tiles_per_row;
+  return kTile * tile_rows;
+}
+
 const char* stop_reason_text(StopReason reason) {
   switch (reason) {
     case StopReason::samples: return "sample count";
@@ -85,14 +92,17 @@ float RenderSession::progress() const {
   const RenderTarget& t = options_.target;
   double p = 0;
   if (time_target(t)) p = std::max(p, seconds_ / t.seconds);
-  // With the rows of a pass under way that are traced.
-  double traced = double(samples());
-  if (renderer_.pass_under_way() && renderer_.height() > 0)
-    traced += pass_samples_ * double(renderer_.height() - renderer_.pass_rows_left()) / renderer_.height();
-  if (sample_cap(t) > 0) p = std::max(p, traced / double(sample_cap(t)));
+  if (sample_cap(t) > 0) p = std::max(p, traced_samples() / double(sample_cap(t)));
   // relMSE falls as 1/n: the fraction of the samples needed so far.
   if (error_target(t) && estimated_relmse_ > 0) p = std::max(p, t.error / estimated_relmse_);
   return static_cast<float>(std::clamp(p, 0.0, 1.0));
+}
+
+double RenderSession::traced_samples() const {
+  double traced = double(samples());
+  if (renderer_.pass_under_way() && renderer_.height() > 0)
+    traced += pass_samples_ * double(renderer_.height() - renderer_.pass_rows_left()) / renderer_.height();
+  return traced;
 }
 
 void RenderSession::set_batch_policy(const BatchPolicy& policy) {
@@ -123,13 +133,15 @@ double RenderSession::row_seconds(int64_t samples) const {
 }
 
 // The whole rest of the pass untiled; tiled, as many rows as fit in `seconds_left` (at least
-// one; one to measure the cost at first).
+// one; one to measure the cost at first), rounded up to a multiple of band_rows.
 void RenderSession::trace_band(double seconds_left) {
   int rows = renderer_.pass_rows_left();
   if (options_.tiled) {
     const double row = row_seconds(pass_samples_);
     const double fit = row > 0 ? std::floor(seconds_left / row) : 1.0;
-    rows = static_cast<int>(std::clamp(fit, 1.0, std::max(1.0, double(rows))));
+    const double multiple = std::max(1, options_.band_rows);
+    const double band = std::ceil(std::clamp(fit, 1.0, double(rows)) / multiple) * multiple;
+    rows = static_cast<int>(std::min(band, double(rows)));
   }
   const auto start = Clock::now();
   const int traced = renderer_.trace_rows(rows);

@@ -55,11 +55,21 @@ struct RenderSessionOptions {
   bool checkpoints = false;
   // Trace each pass in bands of rows (GpuRenderer::begin_pass, trace_rows), each sized from the
   // measured time per pixel-sample to what is left of step()'s slice, so that a step takes
-  // about its slice even when a whole pass takes far longer (the editor's export). The image is
-  // the same as untiled for the same passes; the targets are checked between passes only. Off
-  // for `glint render`, which traces whole passes.
+  // about its slice even when a whole pass takes far longer (the editor's export, and `glint
+  // render` without --time, so that large images get passes of many samples and a progress
+  // bar that still moves). The image is the same as untiled for the same passes; the targets
+  // are checked between passes only.
   bool tiled = false;
+  // A band's rows are a multiple of this (the pass's last band excepted): llvmpipe shades in
+  // tiles of 64x64 pixels, one tile per thread at a time, and a band that covers a few tiles
+  // partly leaves threads idle (band_rows_for_threads).
+  int band_rows = 1;
 };
+
+// Bands of whole 64-row tile rows holding at least four tiles per CPU thread (llvmpipe runs a
+// thread per CPU), so that a band keeps every thread busy to its end: for an image `width`
+// pixels wide on a machine of `threads` threads.
+int band_rows_for_threads(int width, int threads);
 
 class RenderSession {
  public:
@@ -91,6 +101,8 @@ class RenderSession {
   // The last pass ended on a checkpoint (options.checkpoints).
   bool at_checkpoint() const { return at_checkpoint_; }
   int64_t samples() const;
+  // samples() and the part of the pass under way whose rows are traced (tiled), per pixel.
+  double traced_samples() const;
   double seconds() const { return seconds_; }  // wall time of the passes so far
   float progress() const;                       // 0..1 of the target
   const RenderSessionOptions& options() const { return options_; }

@@ -181,6 +181,40 @@ TEST(TiledPass, TiledSessionStepsARowAtATimeAndRendersTheSameImage) {
   expect_same_images(*whole, *banded);
 }
 
+// Bands of a multiple of band_rows rows (the pass's last band excepted), even when the
+// budget fits less than one row; traced_samples() counts the rows of a pass under way.
+TEST(TiledPass, BandsAreMultiplesOfBandRows) {
+  test::ensure_gl_context();
+  static_assert(kHeight % 3 != 0, "the last band must be shorter");
+  GpuRenderer r;
+  r.sync(load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint"), kWidth, kHeight);
+  RenderSessionOptions o;
+  o.target.samples = 2;
+  o.batch = {.first_batch = 2, .max_batch = 2};
+  o.tiled = true;
+  o.band_rows = 3;
+  RenderSession session(r, o);
+  std::vector<int64_t> rows;
+  while (!session.done()) {
+    session.step(1e-9);
+    rows.push_back(session.step_pixel_samples() / (2 * kWidth));
+    if (!session.done())
+      EXPECT_DOUBLE_EQ(session.traced_samples(), 2.0 * (kHeight - r.pass_rows_left()) / kHeight);
+  }
+  std::vector<int64_t> expected(kHeight / 3, 3);
+  expected.push_back(kHeight % 3);
+  EXPECT_EQ(rows, expected);
+  EXPECT_EQ(session.traced_samples(), 2.0);
+}
+
+// Bands of whole 64-row tile rows with at least four tiles per thread.
+TEST(TiledPass, BandRowsHoldFourTilesPerThread) {
+  EXPECT_EQ(band_rows_for_threads(128, 2), 256);   // two tiles a row: four rows of tiles
+  EXPECT_EQ(band_rows_for_threads(512, 2), 64);    // eight tiles a row
+  EXPECT_EQ(band_rows_for_threads(1920, 16), 192);  // 30 tiles a row, 64 wanted
+  EXPECT_EQ(band_rows_for_threads(64, 0), 256);    // an unknown thread count counts as one
+}
+
 // A time target is checked between passes only: a tiled session never stops within a pass,
 // whose rows are part-traced (and, on the compute path, part-written in place).
 TEST(TiledPass, TimeTargetEndsAfterAWholePass) {
