@@ -463,9 +463,10 @@ int run_render_command(int argc, char** argv) {
     // the pixel's further samples). So: a first pass of about kFirstPassPixelSamples samples in
     // all (tens of milliseconds on llvmpipe), then passes grown by rate to about
     // kPassSeconds, each traced in bands of about kBandSeconds so that the progress bar moves.
-    // Not with --time, whose target is checked between passes only: there passes start at one
-    // sample and double while under a quarter of a second, untiled.
-    const bool long_passes = !o.seconds;
+    // Not with --time, whose target is checked between passes only, nor with --adaptive, whose
+    // threshold is refreshed between passes (GpuRenderer::begin_pass): there passes start at
+    // one sample and double while under a quarter of a second, untiled.
+    const bool long_passes = !o.seconds && !o.estimator.adaptive;
     if (long_passes) {
       // Bands only where the image holds more than one (else untiled, and shorter passes so
       // that the bar still moves).
