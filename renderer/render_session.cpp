@@ -117,10 +117,16 @@ void RenderSession::begin_pass() {
   if (sample_cap(options_.target) > 0) k = std::min(k, sample_cap(options_.target) - samples());
   // Towards an error target, relMSE falls as 1/n: a pass need not go much beyond the samples
   // that the last estimate says are missing (it would overshoot the target by the batch).
-  if (error_target(options_.target) && estimated_relmse_ >= 0) {
-    const double needed = double(samples()) * (estimated_relmse_ / options_.target.error - 1.0);
+  // Before the first estimate (fewer than two samples), no further than the minimum: a batch
+  // grown by the first pass's rate could otherwise overshoot the target by far.
+  if (error_target(options_.target)) {
     const int64_t to_minimum = kErrorTargetMinSamples - samples();
-    k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
+    if (estimated_relmse_ >= 0) {
+      const double needed = double(samples()) * (estimated_relmse_ / options_.target.error - 1.0);
+      k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
+    } else {
+      k = std::min<int64_t>(k, std::max<int64_t>(1, to_minimum));
+    }
   }
   if (checkpoint_ > 0) k = std::min(k, checkpoint_ - samples());
   pass_samples_ = static_cast<int>(k);

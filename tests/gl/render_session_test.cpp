@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gl_test_support.h"
+#include "renderer/project_file.h"
 #include "renderer/render_session.h"
 
 namespace glint {
@@ -77,6 +78,24 @@ TEST_F(SessionTest, BatchGrownByRateJumpsToTheBatchThatFits) {
   o.batch.grow_by_rate = false;  // doubling, for comparison
   RenderSession doubles(renderer, o);
   EXPECT_EQ(run(doubles), (std::vector<int64_t>{1, 3, 7, 15, 31, 63, 127, 191, 200}));
+}
+
+// With an error target, a batch grown by rate goes no further than the minimum sample count
+// before the first estimate: after one sample nothing is known, so the second pass ends at 16,
+// not at 1 + max_batch; after it the estimate caps the passes (here a target never met).
+TEST_F(SessionTest, ErrorTargetPassesStopAtTheMinimumBeforeAnEstimate) {
+  renderer.sync(load_project(GLINT_SOURCE_DIR "/projects/cornell_box.glint"), 8, 8);
+  RenderSessionOptions o;
+  o.target = {.samples = 200, .seconds = 0, .error = 1e-12};
+  o.batch = {.first_batch = 1, .max_batch = 64, .grow_below = 1e9, .grow_by_rate = true};
+  RenderSession session(renderer, o);
+  const std::vector<int64_t> passes = run(session);
+  ASSERT_GE(passes.size(), 3u);
+  EXPECT_EQ(passes[0], 1);
+  EXPECT_EQ(passes[1], kErrorTargetMinSamples);
+  EXPECT_GT(passes[2], kErrorTargetMinSamples);
+  EXPECT_EQ(passes.back(), 200);
+  EXPECT_EQ(session.stop_reason(), StopReason::samples);
 }
 
 // Every power of two and the target are reached exactly, whatever the batch; passes between
