@@ -413,9 +413,18 @@ int run_render_command(int argc, char** argv) {
       const BackendChoice choice = choose_backend();
       renderer_options.backend = choice.backend;
       if (!choice.note.empty()) std::fprintf(stderr, "note: %s\n", choice.note.c_str());
-      std::fprintf(stderr, "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; %.2f s)\n",
-                   backend_name(choice.backend), choice.from_cache ? "cached" : "timed now",
-                   choice.fragment_spp_s, choice.compute_spp_s, choice.seconds);
+      // The device's choice is timed at 128x128; an image too small for llvmpipe's fragment
+      // path to use every thread takes the compute shader (the same image).
+      const int threads = static_cast<int>(std::thread::hardware_concurrency());
+      std::string why;
+      if (choice.backend == TraceBackend::fragment && gl_renderer_name().find("llvmpipe") != std::string::npos &&
+          fewer_llvmpipe_tiles_than_threads(width, height, threads)) {
+        renderer_options.backend = TraceBackend::compute;
+        why = "; compute for an image of fewer 64x64 llvmpipe tiles than its " + std::to_string(threads) + " threads";
+      }
+      std::fprintf(stderr, "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; %.2f s%s)\n",
+                   backend_name(renderer_options.backend), choice.from_cache ? "cached" : "timed now",
+                   choice.fragment_spp_s, choice.compute_spp_s, choice.seconds, why.c_str());
     }
     GpuRenderer renderer(renderer_options);
     renderer.set_options(o.estimator);

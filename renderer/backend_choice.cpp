@@ -124,6 +124,12 @@ BackendTiming time_backends() {
   return {median(rate[0]), median(rate[1])};
 }
 
+bool fewer_llvmpipe_tiles_than_threads(int width, int height, int threads) {
+  constexpr int64_t kTile = 64;
+  const int64_t tiles = ((std::max(width, 1) + kTile - 1) / kTile) * ((std::max(height, 1) + kTile - 1) / kTile);
+  return tiles < threads;
+}
+
 bool prefers_compute(const BackendTiming& t) {
   return t.compute_spp_s > kComputeMargin * t.fragment_spp_s;
 }

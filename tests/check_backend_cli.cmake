@@ -21,6 +21,24 @@ if(NOT EXISTS "${OUT}/cache/glint/backend.json")
   message(FATAL_ERROR "--backend auto did not write ${OUT}/cache/glint/backend.json")
 endif()
 expect("" 0 "trace backend: (fragment|compute) \\(auto, cached")
+# 24 px wide: on llvmpipe with more than one thread, one tile for several threads, so the
+# automatic choice renders with the compute shader and says why.
+execute_process(COMMAND ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache "${GLINT}" render "${PROJECT}"
+                -o "${OUT}/out.png" --width 24 --spp 2 OUTPUT_VARIABLE out ERROR_VARIABLE err)
+cmake_host_system_information(RESULT cpus QUERY NUMBER_OF_LOGICAL_CORES)
+if("${err}" MATCHES " on llvmpipe" AND cpus GREATER 1)
+  if(NOT "${err}" MATCHES "trace backend: compute \\(auto, cached")
+    message(FATAL_ERROR "a 24-pixel image on llvmpipe did not take the compute shader:\n${err}")
+  endif()
+  # Unless the device's own (timed) choice was compute already, the line says why.
+  string(REGEX MATCH "fragment ([0-9]+) spp/s, compute ([0-9]+) spp/s" rates "${err}")
+  math(EXPR compute_x10 "${CMAKE_MATCH_2} * 10")
+  math(EXPR fragment_x11 "${CMAKE_MATCH_1} * 11")
+  if(NOT compute_x10 GREATER fragment_x11 AND
+     NOT "${err}" MATCHES "compute for an image of fewer 64x64 llvmpipe tiles than its ${cpus} threads\\)")
+    message(FATAL_ERROR "the switch to compute for a small image is not explained:\n${err}")
+  endif()
+endif()
 expect("--backend;vulkan" 2 "--backend expects auto, fragment or compute, got 'vulkan'")
 expect("--backend" 2 "--backend needs a value")
 expect("--work-group;64x64" 2 "--work-group expects WxH")

@@ -198,6 +198,17 @@ TEST(GlBackendChoice, ComputeOnlyWhenClearlyFaster) {
   EXPECT_FALSE(prefers_compute({1800, 60}));
 }
 
+// 64x64 tiles, whole or part: one tile for an image of up to 64x64, then a tile per started 64.
+TEST(GlBackendChoice, SmallImagesCountTheirLlvmpipeTiles) {
+  EXPECT_TRUE(fewer_llvmpipe_tiles_than_threads(64, 64, 2));    // one tile
+  EXPECT_TRUE(fewer_llvmpipe_tiles_than_threads(24, 18, 2));
+  EXPECT_FALSE(fewer_llvmpipe_tiles_than_threads(65, 64, 2));   // two tiles
+  EXPECT_FALSE(fewer_llvmpipe_tiles_than_threads(128, 128, 2));
+  EXPECT_TRUE(fewer_llvmpipe_tiles_than_threads(128, 128, 16));  // four tiles
+  EXPECT_FALSE(fewer_llvmpipe_tiles_than_threads(256, 256, 16));  // sixteen
+  EXPECT_FALSE(fewer_llvmpipe_tiles_than_threads(64, 64, 1));
+}
+
 TEST(GlBackendChoice, CacheFileFollowsXdgCacheHomeThenHome) {
   test::TempDir dir;
   auto saved = [](const char* name) -> std::optional<std::string> {
