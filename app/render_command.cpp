@@ -403,6 +403,8 @@ int run_render_command(int argc, char** argv) {
     auto context = HeadlessGLContext::create();
     std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
                  gl_renderer_name().c_str(), context->platform().c_str());
+    // llvmpipe runs a thread per CPU (the back-end switch and the bands below count on it).
+    const int cpu_threads = static_cast<int>(std::thread::hardware_concurrency());
     GpuRendererOptions renderer_options;
     renderer_options.force_generic_shader = o.generic_shader;
     renderer_options.work_group = o.work_group;
@@ -415,12 +417,11 @@ int run_render_command(int argc, char** argv) {
       if (!choice.note.empty()) std::fprintf(stderr, "note: %s\n", choice.note.c_str());
       // The device's choice is timed at 128x128; an image too small for llvmpipe's fragment
       // path to use every thread takes the compute shader (the same image).
-      const int threads = static_cast<int>(std::thread::hardware_concurrency());
       std::string why;
       if (choice.backend == TraceBackend::fragment && gl_renderer_name().find("llvmpipe") != std::string::npos &&
-          fewer_llvmpipe_tiles_than_threads(width, height, threads)) {
+          fewer_llvmpipe_tiles_than_threads(width, height, cpu_threads)) {
         renderer_options.backend = TraceBackend::compute;
-        why = "; compute for an image of fewer 64x64 llvmpipe tiles than its " + std::to_string(threads) + " threads";
+        why = "; compute for an image of fewer 64x64 llvmpipe tiles than its " + std::to_string(cpu_threads) + " threads";
       }
       std::fprintf(stderr, "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; %.2f s%s)\n",
                    backend_name(renderer_options.backend), choice.from_cache ? "cached" : "timed now",
@@ -479,7 +480,7 @@ int run_render_command(int argc, char** argv) {
     if (long_passes) {
       // Bands only where the image holds more than one (else untiled, and shorter passes so
       // that the bar still moves).
-      session_options.band_rows = band_rows_for_threads(width, static_cast<int>(std::thread::hardware_concurrency()));
+      session_options.band_rows = band_rows_for_threads(width, cpu_threads);
       session_options.tiled = session_options.band_rows < height;
       session_options.batch.grow_by_rate = true;
       session_options.batch.grow_below = session_options.tiled ? kPassSeconds : kUntiledPassSeconds;
@@ -510,7 +511,7 @@ int run_render_command(int argc, char** argv) {
         std::string line = o.seconds ? format_time_progress(elapsed, *o.seconds, s.samples())
                                      : format_progress(s.traced_samples(), s.options().target.samples, elapsed, "spp");
         // The estimated error beside the bar: the session's own when it targets one, else a
-        // fresh one (a small read-back; at most once a second when not on a terminal).
+        // fresh one (a small read-back; every 5 s when not on a terminal).
         double estimated = s.estimated_relmse();  // -1: not known (fewer than two samples)
         if (!o.target_error && s.samples() > 0) {
           const ErrorEstimate e = renderer.estimate_error();

@@ -50,6 +50,10 @@ BackendTiming time_backends();
 constexpr double kComputeMargin = 1.1;
 bool prefers_compute(const BackendTiming& timing);
 
+// The side of the square tiles in which Mesa's llvmpipe rasterises and shades, one tile per
+// thread at a time (its TILE_SIZE).
+inline constexpr int kLlvmpipeTileSize = 64;
+
 // On Mesa's llvmpipe the fragment shader is shaded one 64x64 tile per thread at a time, so an
 // image of fewer tiles than threads leaves threads idle, where the compute shader's work groups
 // spread over all of them (a 64x64 Cornell box on 2 CPUs: 2.1x with compute). True when an

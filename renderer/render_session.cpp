@@ -7,6 +7,7 @@
 
 #include <epoxy/gl.h>
 
+#include "renderer/backend_choice.h"
 #include "renderer/gpu_renderer.h"
 
 namespace glint {
@@ -36,7 +37,7 @@ int64_t sample_cap(const RenderTarget& t) {
 }  // namespace
 
 int band_rows_for_threads(int width, int threads) {
-  constexpr int kTile = 64;
+  constexpr int kTile = kLlvmpipeTileSize;
   const int tiles_per_row = std::max(1, (width + kTile - 1) / kTile);
   const int tile_rows = (4 * std::max(1, threads) + tiles_per_row - 1) / tiles_per_row;
   return kTile * tile_rows;
@@ -120,13 +121,12 @@ void RenderSession::begin_pass() {
   // Before the first estimate (fewer than two samples), no further than the minimum: a batch
   // grown by the first pass's rate could otherwise overshoot the target by far.
   if (error_target(options_.target)) {
-    const int64_t to_minimum = kErrorTargetMinSamples - samples();
+    int64_t allowed = std::max<int64_t>(1, kErrorTargetMinSamples - samples());
     if (estimated_relmse_ >= 0) {
       const double needed = double(samples()) * (estimated_relmse_ / options_.target.error - 1.0);
-      k = std::min<int64_t>(k, std::max<int64_t>({1, to_minimum, static_cast<int64_t>(std::ceil(needed))}));
-    } else {
-      k = std::min<int64_t>(k, std::max<int64_t>(1, to_minimum));
+      allowed = std::max(allowed, static_cast<int64_t>(std::ceil(needed)));
     }
+    k = std::min(k, allowed);
   }
   if (checkpoint_ > 0) k = std::min(k, checkpoint_ - samples());
   pass_samples_ = static_cast<int>(k);

@@ -91,9 +91,9 @@ float sphere_light_pdf(vec3 p, vec3 center, float radius, vec3 y) {
 
 // The solid-angle pdf of area sampling at point y of a plane with point v0 and unit normal,
 // over the total area of the shape sampled in it (plane_point_pdf); quad_point_pdf takes the
-// plane of a triangle with first vertex v0 and unnormalised normal m. The cosine at y is taken from the
-// height of p above the triangle's plane, dot(n, v0 - p), not from y - p: y carries rounding
-// of the corners' size, which swamps the height when p is almost in the plane.
+// plane of a triangle with first vertex v0 and unnormalised normal m. The cosine at y is taken
+// from the height of p above the plane, dot(n, v0 - p), not from y - p: y carries rounding of
+// the corners' size, which swamps the height when p is almost in the plane.
 float plane_point_pdf(vec3 p, vec3 v0, vec3 unit_normal, float total_area, vec3 y) {
   vec3 to_y = y - p;
   float dist2 = dot(to_y, to_y);
