@@ -28,6 +28,33 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
+# Mesa's llvmpipe, the CPU OpenGL driver that the tests and machines without a GPU run: Debian
+# 12's own Mesa 22.3 traces Glint's shaders at about 0.6x the speed of Mesa 25 (bench/
+# THROUGHPUT.md, "Mesa 25"), which Debian ships for Debian 12 in bookworm-backports. On
+# Debian 12 setup takes Mesa from there, the version it was measured and tested with.
+mesa_pin="25.0.7-2~bpo12+1"
+mesa_packages=(libgl1-mesa-dri libegl-mesa0 libglx-mesa0 libgbm1 mesa-libgallium)
+if grep -qx 'VERSION_CODENAME=bookworm' /etc/os-release 2>/dev/null &&
+   ! dpkg --compare-versions "$(dpkg-query -W -f='${Version}' libgl1-mesa-dri 2>/dev/null || echo 0)" ge 25; then
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  if ! grep -rqs 'bookworm-backports' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+    echo "setup: adding Debian's bookworm-backports (for Mesa 25)" >&2
+    printf '%s\n' 'Types: deb' 'URIs: http://deb.debian.org/debian' 'Suites: bookworm-backports' \
+      'Components: main' 'Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg' |
+      "${sudo_cmd[@]}" tee /etc/apt/sources.list.d/bookworm-backports.sources >/dev/null
+  fi
+  "${sudo_cmd[@]}" apt-get update
+  echo "setup: installing Mesa $mesa_pin from bookworm-backports" >&2
+  if ! DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends \
+       -t bookworm-backports "${mesa_packages[@]/%/=$mesa_pin}"; then
+    # Backports keeps only its newest version: take that one, and say so.
+    echo "setup: WARNING: Mesa $mesa_pin is no longer in bookworm-backports; installing its current Mesa" >&2
+    DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y --no-install-recommends \
+      -t bookworm-backports "${mesa_packages[@]}"
+  fi
+fi
+
 # cargo fetches the pinned tinyfiledialogs and Dear ImGui crates at configure time
 # (cmake/TinyFileDialogs.cmake, cmake/DearImGui.cmake).
 if ! command -v cargo >/dev/null 2>&1 && [ ! -x "$HOME/.cargo/bin/cargo" ]; then

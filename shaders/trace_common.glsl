@@ -724,9 +724,12 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   // lane is active, so with a loop per sample every sample would cost the longest path of the
   // group; here a lane waits only at the end of the pass. Each sample is the same (its random
   // numbers, its arithmetic) as when traced alone, and the samples are added in order.
+  // The loop's own condition ends it, not a `break` alone: Mesa 25's llvmpipe never ended a
+  // `for (;;)` left only by a `break` in this fragment shader (the same loop in the compute
+  // shader ended).
   int s = 0;
   PathState path = start_sample(cam, pixel, samples_before);
-  for (;;) {
+  while (s < u_samples_per_pass) {
     if (continue_path(path)) continue;
     vec3 l = path.radiance;
     // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
@@ -739,8 +742,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
       shifted_square_sum += (l - shift) * (l - shift);
       ++finite_count;
     }
-    if (++s == u_samples_per_pass) break;
-    path = start_sample(cam, pixel, samples_before + uint(s));
+    if (++s < u_samples_per_pass) path = start_sample(cam, pixel, samples_before + uint(s));
   }
   float discarded = previous.a + float(u_samples_per_pass - finite_count);
   float taken = float(samples_before) + float(u_samples_per_pass);
