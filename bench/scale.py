@@ -8,7 +8,7 @@ pixels and --spp samples per pixel. Samples per second come from the line the CL
 (trace time only: loading, packing, the BVH build and shader compilation are outside its clock);
 the BVH's build time is the one the CLI prints ("built in ... ms").
 
-Mesa's llvmpipe stops a shader's loops after 65535 iterations in all (renderer/loop_budget.h):
+Mesa 22's llvmpipe stops a shader's loops after 65535 iterations in all (renderer/loop_budget.h):
 the loop's figures are reported only where one of its samples fits, (max_bounces + 2) x
 (3 x (N + 2) + 64) <= 65535, and marked invalid above (its images are wrong there). On another
 driver every size is valid; --max-loop bounds the sizes the loop is run at (it is slow).
@@ -217,9 +217,9 @@ def main():
              "(the scene's load and packing are not included). Timings on a shared machine are noisy: "
              "compare the two columns of one row (ratios), and see the individual runs below.", ""]
     if llvmpipe:
-        lines += ["On llvmpipe the loop is only valid where one sample stays within the driver's "
+        lines += ["On llvmpipe the loop is run only where one sample stays within Mesa 22's limit of "
                   "65535 loop iterations, (max_bounces + 2) x (3 x (N + 2) + 64) <= 65535; above that "
-                  "its image is wrong and it is not run (\"invalid\").", ""]
+                  "its image is wrong on Mesa 22 and it is not run (\"invalid\").", ""]
     lines += ["| spheres | quads | loop spp/s | BVH spp/s | BVH / loop | BVH nodes | depth | build ms | BVH discarded |",
               "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for r in rows:

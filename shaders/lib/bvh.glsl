@@ -114,8 +114,8 @@ bool box_worth_visiting(vec2 interval, float best) {
 }
 
 // Closest hit by BVH traversal, nearer child first, skipping boxes that start beyond the best
-// hit so far. At most max_steps nodes are visited: the trace shader must bound its loops (Mesa's
-// llvmpipe ends every loop of an invocation after 65535 iterations in all, renderer/
+// hit so far. At most max_steps nodes are visited: the trace shader must bound its loops (Mesa
+// 22's llvmpipe ends every loop of an invocation after 65535 iterations in all, renderer/
 // loop_budget.h), and a traversal stopped early says so (complete == false) instead of
 // returning a wrong hit unnoticed.
 PrimitiveHit closest_hit_bvh(Ray ray, float tmax, int max_steps) {
