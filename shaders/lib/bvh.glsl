@@ -127,9 +127,10 @@ PrimitiveHit closest_hit_bvh(Ray ray, float tmax, int max_steps) {
   int top = 0;
   BvhNode root = bvh_node(0);
   int node = box_worth_visiting(box_interval(root.lo, root.hi, ray, inv_dir), best.t) ? 0 : -1;
-  for (;;) {
+  // The loop ends by its own condition (no node to visit, none stacked), as the trace loop
+  // does (trace_common.glsl says why), or at the step cap.
+  while (node >= 0 || top > 0) {
     if (node < 0) {
-      if (top == 0) break;
       --top;
       if (stack_enter[top] > best.t) continue;  // a nearer hit was found meanwhile
       node = stack_node[top];
