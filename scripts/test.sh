@@ -21,6 +21,8 @@ stage() {
 }
 stage "build"
 bash scripts/build.sh
+stage "smoke render"
+bash scripts/smoke_render.sh
 stage "tests"
 (cd build && ctest --output-on-failure -j2 "$@")
 [ "$quick" = 1 ] && exit 0
