@@ -5,9 +5,9 @@
 // bench/THROUGHPUT.md "Mesa 25"): a pass of many samples then
 // silently skips intersection tests and returns garbage or NaN (the default project at 16x16 in
 // one pass of 1000 samples, with the shader as it was before its closest-hit loop was unrolled:
-// 28% of samples non-finite with either entry point; in passes of 100: none). So the renderer splits passes into draws of at most samples_per_draw_for samples,
-// estimated from the loops one
-// sample runs (a bound, not a count). Other drivers have no such limit, and the extra draws cost
+// 28% of samples non-finite with either entry point; in passes of 100: none). So the renderer
+// splits passes into draws of at most samples_per_draw_for samples, estimated from the loops
+// one sample runs (a bound, not a count). Other drivers have no such limit, and the extra draws cost
 // them nothing noticeable. A scene whose single sample may exceed the limit (thousands of
 // shapes, looped over without an acceleration structure) cannot render correctly on Mesa 22;
 // the renderer traces such scenes with the BVH (renderer/bvh.h), whose traversal it caps.
