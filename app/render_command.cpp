@@ -418,7 +418,7 @@ int run_render_command(int argc, char** argv) {
       // The device's choice is timed at 128x128; an image too small for llvmpipe's fragment
       // path to use every thread takes the compute shader (the same image).
       std::string why;
-      if (choice.backend == TraceBackend::fragment && gl_renderer_name().find("llvmpipe") != std::string::npos &&
+      if (choice.backend == TraceBackend::fragment && on_llvmpipe() &&
           fewer_llvmpipe_tiles_than_threads(width, height, cpu_threads)) {
         renderer_options.backend = TraceBackend::compute;
         why = "; compute for an image of fewer 64x64 llvmpipe tiles than its " + std::to_string(cpu_threads) + " threads";
@@ -448,7 +448,7 @@ int run_render_command(int argc, char** argv) {
     } else {
       std::fprintf(stderr, "glint: closest hits by the loop over %zu shapes\n", scene.spheres.size() + scene.quads.size());
     }
-    if (renderer.exceeds_llvmpipe_loop_limit() && gl_renderer_name().find("llvmpipe") != std::string::npos)
+    if (renderer.exceeds_llvmpipe_loop_limit() && on_llvmpipe())
       std::fprintf(stderr,
                    "warning: one sample of %s may run more loop iterations than Mesa's llvmpipe "
                    "allows a shader (65535; too many bounces, or too many shapes for the loop with "

@@ -125,9 +125,7 @@ BackendTiming time_backends() {
 }
 
 bool fewer_llvmpipe_tiles_than_threads(int width, int height, int threads) {
-  constexpr int64_t kTile = kLlvmpipeTileSize;
-  const int64_t tiles = ((std::max(width, 1) + kTile - 1) / kTile) * ((std::max(height, 1) + kTile - 1) / kTile);
-  return tiles < threads;
+  return int64_t(llvmpipe_tiles_across(width)) * llvmpipe_tiles_across(height) < threads;
 }
 
 bool prefers_compute(const BackendTiming& t) {

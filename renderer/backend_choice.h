@@ -10,6 +10,7 @@
 // `note` says so in one line.
 #pragma once
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -53,6 +54,8 @@ bool prefers_compute(const BackendTiming& timing);
 // The side of the square tiles in which Mesa's llvmpipe rasterises and shades, one tile per
 // thread at a time (its TILE_SIZE).
 inline constexpr int kLlvmpipeTileSize = 64;
+// The tiles, whole or part, across `pixels` pixels (at least one).
+inline int llvmpipe_tiles_across(int pixels) { return std::max(1, (pixels + kLlvmpipeTileSize - 1) / kLlvmpipeTileSize); }
 
 // On Mesa's llvmpipe the fragment shader is shaded one 64x64 tile per thread at a time, so an
 // image of fewer tiles than threads leaves threads idle, where the compute shader's work groups

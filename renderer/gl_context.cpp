@@ -167,6 +167,8 @@ std::string gl_renderer_name() {
   return s ? reinterpret_cast<const char*>(s) : "unknown";
 }
 
+bool on_llvmpipe() { return gl_renderer_name().find("llvmpipe") != std::string::npos; }
+
 std::string gl_version_string() {
   const GLubyte* s = glGetString(GL_VERSION);
   return s ? reinterpret_cast<const char*>(s) : "unknown";

@@ -39,5 +39,8 @@ class HeadlessGLContext {
 // GL_RENDERER and GL_VERSION of the current context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
 std::string gl_renderer_name();
 std::string gl_version_string();
+// The current context is Mesa's llvmpipe (the CPU driver: its tiles, threads and, on Mesa 22,
+// its loop limit).
+bool on_llvmpipe();
 
 }  // namespace glint

@@ -130,7 +130,7 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   glCreateBuffers(1, &loop_shapes_buffer_);
   const LoopShapesBlock empty;
   glNamedBufferData(loop_shapes_buffer_, sizeof empty, &empty, GL_DYNAMIC_DRAW);
-  llvmpipe_ = gl_renderer_name().find("llvmpipe") != std::string::npos;
+  llvmpipe_ = on_llvmpipe();
   // Every table is bound for every pass: never without storage, even before a scene or a BVH
   // exists.
   upload_table(0, std::vector<GpuSphere>{});

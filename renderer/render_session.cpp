@@ -37,10 +37,9 @@ int64_t sample_cap(const RenderTarget& t) {
 }  // namespace
 
 int band_rows_for_threads(int width, int threads) {
-  constexpr int kTile = kLlvmpipeTileSize;
-  const int tiles_per_row = std::max(1, (width + kTile - 1) / kTile);
+  const int tiles_per_row = llvmpipe_tiles_across(width);
   const int tile_rows = (4 * std::max(1, threads) + tiles_per_row - 1) / tiles_per_row;
-  return kTile * tile_rows;
+  return kLlvmpipeTileSize * tile_rows;
 }
 
 const char* stop_reason_text(StopReason reason) {

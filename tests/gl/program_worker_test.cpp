@@ -125,7 +125,7 @@ bool shader_cache_disabled() {
 #define SKIP_UNLESS_LLVMPIPE_WITH_CACHE()                                                 \
   do {                                                                                    \
     if (shader_cache_disabled()) GTEST_SKIP() << "MESA_SHADER_CACHE_DISABLE is set";      \
-    if (gl_renderer_name().find("llvmpipe") == std::string::npos)                         \
+    if (!on_llvmpipe())                                                                   \
       GTEST_SKIP() << "timed for llvmpipe, not " << gl_renderer_name();                   \
   } while (0)
 
