@@ -574,11 +574,20 @@ PathState start_path(Ray ray) {
   return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0);
 }
 
+// Whether next-event estimation has anything to sample: emitting shapes or an environment map.
+bool light_sampling_on() {
+#if defined(GLINT_NO_LIGHT_SAMPLING)
+  return false;
+#else
+  return u_light_count > 0 || u_env_select > 0.0;
+#endif
+}
+
 // One closest-hit query of the path and what follows from it: the emission or environment it
 // finds, next-event estimation and the BSDF sample of the next ray. Returns false when the path
 // has ended (its radiance is then final).
 bool continue_path(inout PathState path) {
-  bool light_sampling = u_light_count > 0 || u_env_select > 0.0;
+  bool light_sampling = light_sampling_on();
   Ray ray = path.ray;
   SceneHit hit = intersect_scene(ray);
   if (hit.material < 0) {
@@ -678,7 +687,13 @@ bool adaptive_pixel_active(vec4 accumulation, vec4 compensation, vec3 variance) 
 PathState start_sample(CameraFrame cam, ivec2 pixel, uint index) {
   g_sample_index = u_first_sample + index;
   g_rng = rng_seed(uint(pixel.x), uint(pixel.y), g_sample_index, u_seed);
-  if (u_sobol) g_primary = sobol_sample_4d(g_sample_index, g_pixel_seed, 0u);
+  // Without next-event estimation there is no first light point to pair the pixel position
+  // with: the pixel takes a 2-D point (Sobol dimensions 0 and 1, a (0,2)-sequence) and the 4-D
+  // point's two costlier dimensions are not computed.
+  if (u_sobol) {
+    g_primary = light_sampling_on() ? sobol_sample_4d(g_sample_index, g_pixel_seed, 0u)
+                                    : vec4(0.0, 0.0, sobol_sample_2d(g_sample_index, g_pixel_seed, 0u));
+  }
   g_incomplete = false;
   vec2 jitter = sample_2d(0u);
   vec2 film = (vec2(float(pixel.x), float(pixel.y)) + jitter) / vec2(u_resolution);

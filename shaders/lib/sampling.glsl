@@ -11,20 +11,17 @@ mat3 basis_from_normal(vec3 n) {
   return mat3(vec3(1.0f + s * n.x * n.x * a, s * b, -s * n.x), vec3(b, s + n.y * n.y * a, -n.y), n);
 }
 
-// Concentric map of the unit square onto the unit disk (Shirley and Chiu 1997).
+// Concentric map of the unit square onto the unit disk (Shirley and Chiu 1997). Written with
+// selects and one division rather than an `if` per octant pair: on a SIMD CPU (llvmpipe) both
+// sides of an `if` run, with a division each. The values are the same as with the `if`.
 vec2 sample_disk(vec2 u) {
   float x = 2.0f * u.x - 1.0f;
   float y = 2.0f * u.y - 1.0f;
-  if (x == 0.0f && y == 0.0f) return vec2(0.0f);
-  float r;
-  float phi;
-  if (abs(x) > abs(y)) {
-    r = x;
-    phi = (PI / 4.0f) * (y / x);
-  } else {
-    r = y;
-    phi = (PI / 2.0f) - (PI / 4.0f) * (x / y);
-  }
+  bool x_major = abs(x) > abs(y);
+  float r = x_major ? x : y;
+  // At the centre (r = 0) the divisor is 1, so that no lane divides 0 by 0; r * cos(phi) is 0.
+  float ratio = (x_major ? y : x) / (r == 0.0f ? 1.0f : r);
+  float phi = x_major ? (PI / 4.0f) * ratio : (PI / 2.0f) - (PI / 4.0f) * ratio;
   return vec2(r * cos(phi), r * sin(phi));
 }
 
