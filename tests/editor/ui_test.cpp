@@ -546,7 +546,6 @@ TEST_F(UiUsabilityTest, AutoPreviewClicksThatEditNothingDoNotRestart) {
   for (int i = 0; i < 3; ++i) frame();
   const int ball = visible_sphere();
   ASSERT_GE(ball, 0);
-  ImGuiIO& io = ImGui::GetIO();
   const ImVec2 targets[] = {screen(doc_.scene.spheres[ball].center),  // selects
                             // the sky, clear of the dock splitters and of the gizmo's buttons (top left)
                             ImVec2(state_.viewport.pos.x + state_.viewport.size.x - 15, state_.viewport.pos.y + 15)};

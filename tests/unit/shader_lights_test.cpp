@@ -370,7 +370,9 @@ TYPED_TEST(ShaderLights, QuadPdfsAtGrazingAnglesAreConsistent) {
                                               L::v3(corners[2]), L::v3(corners[3]), hit.position));
         ASSERT_TRUE(near_rel(pdf, double(ls.pdf), 64 * L::kEps)) << height << ": " << pdf << " vs " << ls.pdf;
       }
-      if (corners == c) EXPECT_EQ(occluded, 0);
+      if (corners == c) {
+        EXPECT_EQ(occluded, 0);
+      }
       EXPECT_LE(misses, count / 1000) << height;
       double mean = sum / count;
       double sigma = std::sqrt(std::max(0.0, sum2 / count - mean * mean) / (count - 1));
