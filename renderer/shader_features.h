@@ -6,10 +6,12 @@
 // for them unrolls the closest-hit loop.
 // Only features whose removal makes the shader cheaper are listed; removing one never changes
 // the random-number sequence, so generic and specialised programs render the same image.
-// On Mesa's llvmpipe a branch that no pixel takes still costs its full time: the shader runs
-// as SIMD vectors of pixels, and an `if` only masks lanes (gallivm's lp_bld_nir_soa.c pushes
-// an execution mask and runs both sides; loops alone branch). So code that a uniform switches
-// off is compiled out wherever the scene allows it (bench/THROUGHPUT.md measures it).
+// On Mesa's llvmpipe the shader runs as SIMD vectors of pixels and an `if` masks lanes: Mesa
+// 22 runs both sides of every `if` (only loops branch), so a branch that no pixel takes still
+// costs its full time; Mesa 25 skips a side that no lane of the group takes, but runs both
+// where the group's lanes disagree, as they do wherever its pixels see different materials.
+// So code that a uniform switches off is compiled out wherever the scene allows it
+// (bench/THROUGHPUT.md measures it on both).
 #pragma once
 
 #include <cstdint>

@@ -12,8 +12,9 @@ mat3 basis_from_normal(vec3 n) {
 }
 
 // Concentric map of the unit square onto the unit disk (Shirley and Chiu 1997). Written with
-// selects and one division rather than an `if` per octant pair: on a SIMD CPU (llvmpipe) both
-// sides of an `if` run, with a division each. The values are the same as with the `if`.
+// selects and one division rather than an `if` per octant pair: on a SIMD CPU (llvmpipe) an
+// `if` whose lanes disagree, as random points do here, runs both sides, with a division each.
+// The values are the same as with the `if`.
 vec2 sample_disk(vec2 u) {
   float x = 2.0f * u.x - 1.0f;
   float y = 2.0f * u.y - 1.0f;
