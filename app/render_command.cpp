@@ -40,6 +40,7 @@ const char* const kUsage =
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
+    "                    [--restart auto|at-once|together]\n"
     "                    [--backend auto|fragment|compute] [--work-group WxH]\n"
     "                    [--denoise [--denoise-quality fast|high]] [--aovs]\n"
     "\n"
@@ -107,6 +108,10 @@ const char* const kUsage =
     "                     would exceed Mesa llvmpipe's shader loop limit), loop (test every\n"
     "                     shape for every ray), or bvh (bounding volume hierarchy, built\n"
     "                     before the clock starts; its build time is printed)\n"
+    "Path regeneration (same image either way; for measuring):\n"
+    "  --restart R        when a pixel whose path has ended starts its next sample: auto\n"
+    "                     (the default: together with its SIMD group where the environment\n"
+    "                     gives light, at once where it is black), at-once, or together\n"
     "Trace backend (same image either way):\n"
     "  --backend B        auto (the default: the faster on this device, timed once on a\n"
     "                     small scene and cached in $XDG_CACHE_HOME/glint/backend.json,\n"
@@ -207,6 +212,12 @@ Options parse(int argc, char** argv) {
       else if (v == "loop") o.estimator.accel = Accel::loop;
       else if (v == "bvh") o.estimator.accel = Accel::bvh;
       else throw UsageError{"--accel expects auto, loop or bvh, got '" + v + "'"};
+    } else if (a == "--restart") {
+      std::string v = value();
+      if (v == "auto") o.estimator.restart = PathRestart::automatic;
+      else if (v == "at-once") o.estimator.restart = PathRestart::at_once;
+      else if (v == "together") o.estimator.restart = PathRestart::together;
+      else throw UsageError{"--restart expects auto, at-once or together, got '" + v + "'"};
     } else if (a == "--no-light-sampling") o.estimator.light_sampling = false;
     else if (a == "--no-env-sampling") o.estimator.environment_sampling = false;
     else if (a == "--no-roulette") o.estimator.russian_roulette = false;

@@ -18,6 +18,7 @@
 #include "renderer/gl_program.h"
 #include "renderer/loop_budget.h"
 #include "renderer/loop_shapes.h"
+#include "renderer/path_restart.h"
 #include "renderer/gpu_scene.h"
 #include "renderer/program_worker.h"
 #include "renderer/scene_validation.h"
@@ -541,6 +542,7 @@ void GpuRenderer::set_frame_uniforms(const Scene& scene) {
   u.env_select = env_lights ? (u.light_count > 0 ? 0.5f : 1.0f) : 0.0f;
   u.russian_roulette = options_.russian_roulette ? 1 : 0;
   u.clamp = options_.clamp;
+  u.restart_together = restart_paths_together(options_.restart, env) ? 1 : 0;
   u.sobol = options_.sampler == SamplerKind::sobol ? 1 : 0;
   u.seed = static_cast<unsigned>(scene.render.seed);
   u.first_sample = options_.first_sample;
@@ -568,6 +570,7 @@ void GpuRenderer::apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_env_distribution_size", u.env_distribution_size);
   p.set("u_russian_roulette", u.russian_roulette);
   p.set("u_clamp", u.clamp);
+  p.set("u_restart_together", u.restart_together);
   p.set("u_sobol", u.sobol);
   p.set("u_seed", u.seed);
   p.set("u_first_sample", u.first_sample);

@@ -231,6 +231,7 @@ class GpuRenderer {
     glm::ivec2 env_distribution_size{1, 1};
     int russian_roulette = 0;
     float clamp = 0;
+    int restart_together = 0;
     int sobol = 0;
     unsigned seed = 0;
     unsigned first_sample = 0;

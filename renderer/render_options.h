@@ -16,6 +16,10 @@ enum class SamplerKind { pcg, sobol };
 // measuring; the image is the same either way).
 enum class Accel { automatic, loop, bvh };
 
+// When path regeneration starts a lane's next sample (renderer/path_restart.h): chosen from the
+// scene, or forced (for measuring; the image is the same either way).
+enum class PathRestart { automatic, at_once, together };
+
 struct RenderOptions {
   bool light_sampling = true;        // next-event estimation + MIS for emitting spheres and quads
   bool environment_sampling = true;  // ... and for an environment map (importance-sampled)
@@ -23,6 +27,7 @@ struct RenderOptions {
   SamplerKind sampler = SamplerKind::sobol;
   float clamp = 0;                   // firefly clamp: largest sample luminance; 0 = off. BIASED.
   Accel accel = Accel::automatic;
+  PathRestart restart = PathRestart::automatic;
   // Where in the render's sample sequence this render starts: a render of n samples takes
   // samples first_sample .. first_sample+n-1, the very samples a render of first_sample+n
   // samples takes there (for every sampler). A sample range A:B (`glint render --samples`)

@@ -5,6 +5,12 @@
 // variance and their compensations are read and written in place (image load/store, no
 // ping-pong); each pixel is read and written by its own invocation only, so no synchronisation
 // within a dispatch is needed, and the renderer puts a glMemoryBarrier between dispatches.
+// Group votes (GL_ARB_shader_group_vote) let a path whose lane has ended wait for its SIMD group
+// (trace_common.glsl, u_restart_together); without them every lane restarts at once.
+#extension GL_ARB_shader_group_vote : enable
+#if defined(GL_ARB_shader_group_vote)
+#define GLINT_GROUP_VOTE
+#endif
 #ifndef GLINT_GROUP_X
 #define GLINT_GROUP_X 8
 #endif

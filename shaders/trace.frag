@@ -4,6 +4,12 @@
 // Path tracing pass as a fragment shader, one fragment per pixel: reads the previous
 // accumulation, variance and their compensations and writes the next ones (ping-pong render
 // targets).
+// Group votes (GL_ARB_shader_group_vote) let a path whose lane has ended wait for its SIMD group
+// (trace_common.glsl, u_restart_together); without them every lane restarts at once.
+#extension GL_ARB_shader_group_vote : enable
+#if defined(GL_ARB_shader_group_vote)
+#define GLINT_GROUP_VOTE
+#endif
 // Declared before the library's samplers: the first sampler slots (trace_common.glsl says why
 // the order matters).
 layout(binding = 0) uniform sampler2D u_previous;

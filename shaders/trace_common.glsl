@@ -161,6 +161,10 @@ uniform uint u_adaptive_min_samples;
 uniform uint u_adaptive_every;
 uniform uint u_pass_index;
 uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
+// Path regeneration's restart policy (add_samples): false, a lane whose path has ended starts
+// its next sample at once; true, it waits until no lane of its SIMD group has a path in flight,
+// so that the group starts its samples together (renderer/path_restart.h chooses).
+uniform bool u_restart_together;
 // Owen-scrambled Sobol points instead of independent PCG numbers; a constant in programs for
 // one sampler (renderer/shader_features.h), so that the other one's code is left out.
 #if defined(GLINT_NO_PCG_SAMPLER)
@@ -737,15 +741,26 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   // Path regeneration: one loop over the pass's bounces, in which a lane whose path has ended
   // starts its next sample. A SIMD group (8 lanes on llvmpipe) runs each iteration while any
   // lane is active, so with a loop per sample every sample would cost the longest path of the
-  // group; here a lane waits only at the end of the pass. Each sample is the same (its random
-  // numbers, its arithmetic) as when traced alone, and the samples are added in order.
+  // group. Starting at once keeps lanes busy where paths differ much in length (closed rooms);
+  // where they are short and alike (open scenes) starting together pays the start-up code once
+  // per group and keeps the group's rays coherent (u_restart_together; bench/THROUGHPUT.md).
+  // Each sample is the same (its random numbers, its arithmetic) as when traced alone, and the
+  // samples are added in order, so the image does not depend on the policy.
   // The loop's own condition ends it, not a `break` alone: Mesa 25's llvmpipe never ended a
   // `for (;;)` left only by a `break` in this fragment shader (the same loop in the compute
   // shader ended).
   int s = 0;
   PathState path = start_sample(cam, pixel, samples_before);
+  bool in_flight = true;
   while (s < u_samples_per_pass) {
-    if (continue_path(path)) continue;
+    if (in_flight) in_flight = continue_path(path);
+    // Every lane still in the loop votes, so that the vote sees the whole active group.
+#if defined(GLINT_GROUP_VOTE)
+    bool group_idle = allInvocationsARB(!in_flight);
+#else
+    bool group_idle = true;
+#endif
+    if (in_flight || (u_restart_together && !group_idle)) continue;
     vec3 l = path.radiance;
     // The firefly clamp scales a sample down to luminance u_clamp: biased, off by default.
     float lum = luminance(l);
@@ -757,7 +772,10 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
       shifted_square_sum += (l - shift) * (l - shift);
       ++finite_count;
     }
-    if (++s < u_samples_per_pass) path = start_sample(cam, pixel, samples_before + uint(s));
+    if (++s < u_samples_per_pass) {
+      path = start_sample(cam, pixel, samples_before + uint(s));
+      in_flight = true;
+    }
   }
   float discarded = previous.a + float(u_samples_per_pass - finite_count);
   float taken = float(samples_before) + float(u_samples_per_pass);

@@ -132,7 +132,9 @@ TEST(RenderLog, WhiteFurnaceMatchesItsExactImageAtEveryCheckpoint) {
   for (const Row& r : rows) {
     EXPECT_LT(r.relmse, 1e-9);
     EXPECT_LT(r.relmse_trimmed, 1e-9);
-    if (r.spp >= 2) EXPECT_LT(r.estimated_relmse, 1e-9);  // no variance to estimate
+    if (r.spp >= 2) {
+      EXPECT_LT(r.estimated_relmse, 1e-9);  // no variance to estimate
+    }
     EXPECT_LT(r.mape, 1e-5);
     EXPECT_LT(std::abs(r.mean_bias), 1e-5);
     EXPECT_EQ(r.nonfinite, 0);
@@ -176,6 +178,22 @@ TEST(RenderTargetError, SaysWhichLimitEndedTheRender) {
   EXPECT_EQ(render({project, "-o", out, "--target-error", "0"}), 2);
   err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("--target-error expects a positive relMSE, got '0'"), std::string::npos) << err;
+}
+
+// --restart picks path regeneration's policy (the same image either way) and names a bad value.
+TEST(RenderLog, RestartPolicyRendersAndRejectsUnknownValues) {
+  test::TempDir dir;
+  save_project(furnace_scene(), dir / "furnace.glint");
+  const std::string project = (dir / "furnace.glint").string(), out = (dir / "out.exr").string();
+  for (const char* policy : {"auto", "at-once", "together"}) {
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(render({project, "-o", out, "--spp", "2", "--restart", policy}), 0) << policy;
+    testing::internal::GetCapturedStderr();
+  }
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(render({project, "-o", out, "--restart", "sideways"}), 2);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("--restart expects auto, at-once or together, got 'sideways'"), std::string::npos) << err;
 }
 
 TEST(RenderLog, ReferenceAndLogGoTogether) {

@@ -135,7 +135,9 @@ TEST(GlBvh, GenericProgramChoosesByUniform) {
     r.prepare_specialised_program();
     r.trace(4);
     EXPECT_EQ(r.last_pass_generic(), generic);
-    if (!generic) EXPECT_NE(r.last_pass_defines().find("GLINT_NO_LOOP"), std::string::npos);
+    if (!generic) {
+      EXPECT_NE(r.last_pass_defines().find("GLINT_NO_LOOP"), std::string::npos);
+    }
     return r.read_accumulation();
   };
   EXPECT_EQ(differing_pixels(run(true), run(false)), 0);

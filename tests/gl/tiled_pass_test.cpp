@@ -198,8 +198,9 @@ TEST(TiledPass, BandsAreMultiplesOfBandRows) {
   while (!session.done()) {
     session.step(1e-9);
     rows.push_back(session.step_pixel_samples() / (2 * kWidth));
-    if (!session.done())
+    if (!session.done()) {
       EXPECT_DOUBLE_EQ(session.traced_samples(), 2.0 * (kHeight - r.pass_rows_left()) / kHeight);
+    }
   }
   std::vector<int64_t> expected(kHeight / 3, 3);
   expected.push_back(kHeight % 3);

@@ -61,7 +61,9 @@ TEST(Denoiser, RemovesMostOfTheNoiseOfAFlatImage) {
       ASSERT_EQ(out.height, 32);
       for (size_t i = 0; i < out.pixels.size(); ++i) {
         ASSERT_TRUE(std::isfinite(out.pixels[i])) << i;
-        if (i % 4 == 3) ASSERT_EQ(out.pixels[i], 1.0f) << "alpha is the input's";
+        if (i % 4 == 3) {
+          ASSERT_EQ(out.pixels[i], 1.0f) << "alpha is the input's";
+        }
       }
       // The noise's squared error is 0.04 per value; a denoiser that works takes most of it
       // away (a filter that did nothing would keep all of it).

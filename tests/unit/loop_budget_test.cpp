@@ -13,7 +13,9 @@ TEST(LoopBudget, DrawsStayUnderAQuarterOfTheLimit) {
       const int n = samples_per_draw_for(loop_iterations_per_sample(shapes, bounces));
       EXPECT_GE(n, 1);
       EXPECT_LE(n, 64);
-      if (n > 1) EXPECT_LE(n * loop_iterations_per_sample(shapes, bounces), kLlvmpipeLoopLimit / 4) << shapes << " " << bounces;
+      if (n > 1) {
+        EXPECT_LE(n * loop_iterations_per_sample(shapes, bounces), kLlvmpipeLoopLimit / 4) << shapes << " " << bounces;
+      }
     }
   // The default project (7 shapes, 8 bounces): passes of 1000 samples broke, 100 did not.
   EXPECT_LT(samples_per_draw_for(loop_iterations_per_sample(7, 8)) * 10, 1000);
