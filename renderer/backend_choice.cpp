@@ -82,10 +82,12 @@ nlohmann::json read_cache(const std::filesystem::path& file, std::string& note) 
 
 std::string device_key() {
   const GLubyte* vendor = glGetString(GL_VENDOR);
-  // The shaders too: a build whose path tracer changed may be faster on the other entry point.
+  // The shaders too: a build whose path tracer changed may be faster on the other entry point;
+  // and how they are timed, so that a changed timing times again.
   Hasher shaders;
   shaders.value(shader_source("trace.frag"));
   shaders.value(shader_source("trace.comp"));
+  shaders.value(std::string("timing: 8 balls, 128 px, 5 rounds of 32 spp"));
   char digest[17];
   std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(shaders.result()));
   return std::string(vendor ? reinterpret_cast<const char*>(vendor) : "unknown") + " | " +
@@ -102,7 +104,10 @@ std::optional<std::filesystem::path> default_backend_cache_file() {
 
 BackendTiming time_backends() {
   const Scene scene = timing_scene();
-  constexpr int kSize = 128, kRounds = 5, kSpp = 8;  // each timing tens of ms on llvmpipe
+  // Passes of 32 samples, 15-35 ms each on llvmpipe: with passes of 8 (a few ms) a fixed cost
+  // per fragment-shader pass made the fragment shader look 0.7-1.1x the compute shader here
+  // on Mesa 25, where `glint render`'s long passes trace it 1.3-1.4x as fast (bench/THROUGHPUT.md).
+  constexpr int kSize = 128, kRounds = 5, kSpp = 32;
   std::unique_ptr<GpuRenderer> renderers[2];
   for (int b = 0; b < 2; ++b) {
     GpuRendererOptions options;

@@ -5,7 +5,8 @@
 //
 // The cache is a small JSON file, $XDG_CACHE_HOME/glint/backend.json (else
 // ~/.cache/glint/backend.json), keyed by GL_VENDOR, GL_RENDERER and GL_VERSION together with a
-// digest of the trace shaders' text (a driver update or a changed path tracer times again). A
+// digest of the trace shaders' text and of the timing's method (a driver update, a changed path
+// tracer or a changed timing times again). A
 // cache that cannot be read or written never stops a render: the choice is timed instead, and
 // `note` says so in one line.
 #pragma once
@@ -37,7 +38,8 @@ std::optional<std::filesystem::path> default_backend_cache_file();
 
 // Both backends' samples per pixel per second on the timing scene (8 matte balls on a floor
 // sphere under a constant sky, 4 bounces, 128x128), each compiled and warmed up first, then
-// timed in alternation (3 passes each) and the median taken. Needs a current GL 4.5 context.
+// timed in alternation (5 passes of 32 samples each) and the median taken.
+// Needs a current GL 4.5 context.
 struct BackendTiming {
   double fragment_spp_s = 0;
   double compute_spp_s = 0;
