@@ -4,11 +4,11 @@
 // added in the same order); only the speed differs, and which is faster depends on the scene.
 //
 // Measured on llvmpipe (Mesa 25, bench/THROUGHPUT.md, "Restarting paths together"): starting
-// together traced 1.11-1.24x the samples per second of starting at once on open scenes (an
-// environment that paths escape to after a few bounces: their lengths are alike, and starting
-// at once runs the start-up code whenever any lane of the group has ended, next to rays of
-// other depths), and 0.90-0.94x on closed rooms under a black environment (paths end by
-// roulette or the bounce limit, their lengths differ widely, and waiting lanes idle).
+// together traced 0.98-1.22x the samples per second of starting at once on 11 scenes under a
+// lit environment (faster on 9: paths escape after a few bounces, so their lengths are alike,
+// and starting at once runs the start-up code whenever any lane of the group has ended, next
+// to rays of other depths), and 0.88-0.96x on 5 closed rooms under a black environment (paths
+// end by roulette or the bounce limit, their lengths differ widely, and waiting lanes idle).
 // Without group votes in the driver (GL_ARB_shader_group_vote) every lane starts at once.
 #pragma once
 
