@@ -349,12 +349,37 @@ std::string take_exr_error(const char* err, int code) {
   return message;
 }
 
+// tinyexr (1.0.1) reads a "tiles" attribute as 9 bytes whatever size the file gives it: a
+// shorter one is read past its end (fuzz_image found it; tinyexr's assert on the size is gone
+// in release builds). So the single-part header's attributes (name, type, 32-bit little-endian
+// size, data) are walked first; a malformed walk is left to tinyexr to report. Returns what is
+// wrong, or "".
+std::string unsafe_exr_attribute(const std::vector<unsigned char>& bytes) {
+  size_t at = 8;  // after the magic number and the version field
+  while (at < bytes.size() && bytes[at] != 0) {
+    const auto name_end = std::find(bytes.begin() + at, bytes.end(), 0);
+    if (name_end == bytes.end()) return "";
+    const auto type_end = std::find(name_end + 1, bytes.end(), 0);
+    if (type_end == bytes.end() || bytes.end() - type_end < 5) return "";
+    const size_t size_at = static_cast<size_t>(type_end - bytes.begin()) + 1;
+    const uint32_t size = uint32_t(bytes[size_at]) | uint32_t(bytes[size_at + 1]) << 8 |
+                          uint32_t(bytes[size_at + 2]) << 16 | uint32_t(bytes[size_at + 3]) << 24;
+    const std::string name(bytes.begin() + at, name_end);
+    if (name == "tiles" && size != 9)
+      return "attribute 'tiles' is " + std::to_string(size) + " bytes, not 9";
+    at = size_at + 4 + size;
+  }
+  return "";
+}
+
 void parse_exr_header(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
                       ExrFile& exr) {
   int ret = ParseEXRVersionFromMemory(&exr.version, bytes.data(), bytes.size());
   if (ret != TINYEXR_SUCCESS) fail(path, "not a readable OpenEXR file (bad version field)");
   if (exr.version.multipart || exr.version.non_image)
     fail(path, "multi-part and deep OpenEXR files are not supported");
+  if (const std::string unsafe = unsafe_exr_attribute(bytes); !unsafe.empty())
+    fail(path, "bad OpenEXR header (" + unsafe + ")");
   const char* err = nullptr;
   ret = ParseEXRHeaderFromMemory(&exr.header, &exr.version, bytes.data(), bytes.size(), &err);
   if (ret != TINYEXR_SUCCESS) fail(path, "bad OpenEXR header (" + take_exr_error(err, ret) + ")");

@@ -431,6 +431,12 @@ TEST(MalformedInput, ImagesFailWithFileAndProblem) {
        "image is too large (16385x16, the limit is 16384 per side)"},
       {"EXR with an inverted data window", "a.exr", data_window_max_x("\xfe\xff\xff\xff"),
        "invalid image size -1x16"},
+      {"EXR marked tiled with a 2-byte tiles attribute", "a.exr",
+       [](std::string b) {
+         b.at(5) |= 0x02;  // the version field's "single-part tiled" bit (bit 9)
+         return b.insert(8, std::string("tiles\0tiledesc\0\x02\0\0\0\x10\x00", 21));
+       },
+       "bad OpenEXR header (attribute 'tiles' is 2 bytes, not 9)"},
       {"EXR with a corrupt offset table", "a.exr",
        [&](std::string b) { b.at(exr_table + 3) = '\x7f'; return b; },
        "cannot decode OpenEXR data (Invalid offset value in DecodeEXRImage.)"},
