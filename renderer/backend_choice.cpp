@@ -22,6 +22,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The timing: kTimingRounds alternating passes of kTimingSpp samples per back end at
+// kTimingSize x kTimingSize. Passes of 32 samples take 15-35 ms each on llvmpipe: in passes of
+// 8 (a few ms) a fixed cost per fragment-shader pass made the fragment shader look 0.7-1.1x
+// the compute shader on the timing scene on Mesa 25, where `glint render`'s long passes trace
+// it about 1.3x as fast (bench/THROUGHPUT.md, "The back-end timing's passes").
+constexpr int kTimingSize = 128, kTimingRounds = 5, kTimingSpp = 32;
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -87,7 +94,7 @@ std::string device_key() {
   Hasher shaders;
   shaders.value(shader_source("trace.frag"));
   shaders.value(shader_source("trace.comp"));
-  shaders.value(std::string("timing: 8 balls, 128 px, 5 rounds of 32 spp"));
+  for (int v : {kTimingSize, kTimingRounds, kTimingSpp}) shaders.value(v);
   char digest[17];
   std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(shaders.result()));
   return std::string(vendor ? reinterpret_cast<const char*>(vendor) : "unknown") + " | " +
@@ -104,27 +111,23 @@ std::optional<std::filesystem::path> default_backend_cache_file() {
 
 BackendTiming time_backends() {
   const Scene scene = timing_scene();
-  // Passes of 32 samples, 15-35 ms each on llvmpipe: with passes of 8 (a few ms) a fixed cost
-  // per fragment-shader pass made the fragment shader look 0.7-1.1x the compute shader here
-  // on Mesa 25, where `glint render`'s long passes trace it 1.3-1.4x as fast (bench/THROUGHPUT.md).
-  constexpr int kSize = 128, kRounds = 5, kSpp = 32;
   std::unique_ptr<GpuRenderer> renderers[2];
   for (int b = 0; b < 2; ++b) {
     GpuRendererOptions options;
     options.backend = b ? TraceBackend::compute : TraceBackend::fragment;
     renderers[b] = std::make_unique<GpuRenderer>(options);
-    renderers[b]->sync(scene, kSize, kSize);
+    renderers[b]->sync(scene, kTimingSize, kTimingSize);
     renderers[b]->prepare_specialised_program();
     renderers[b]->trace(1);  // the first pass may still set things up in the driver
     glFinish();
   }
   std::vector<double> rate[2];
-  for (int round = 0; round < kRounds; ++round)
+  for (int round = 0; round < kTimingRounds; ++round)
     for (int b = 0; b < 2; ++b) {
       const auto start = Clock::now();
-      renderers[b]->trace(kSpp);
+      renderers[b]->trace(kTimingSpp);
       glFinish();
-      rate[b].push_back(kSpp / std::max(seconds_since(start), 1e-9));
+      rate[b].push_back(kTimingSpp / std::max(seconds_since(start), 1e-9));
     }
   return {median(rate[0]), median(rate[1])};
 }
