@@ -14,6 +14,7 @@
 #include "renderer/atomic_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
+#include "renderer/llvmpipe_threads.h"
 #include "renderer/scene_digest.h"
 #include "renderer/shader_sources.h"
 
@@ -95,6 +96,7 @@ std::string device_key() {
   shaders.value(shader_source("trace.frag"));
   shaders.value(shader_source("trace.comp"));
   for (int v : {kTimingSize, kTimingRounds, kTimingSpp}) shaders.value(v);
+  shaders.value(llvmpipe_thread_pinning_enabled() ? 1 : 0);  // short passes speed up with it
   char digest[17];
   std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(shaders.result()));
   return std::string(vendor ? reinterpret_cast<const char*>(vendor) : "unknown") + " | " +

@@ -16,6 +16,7 @@
 #include "renderer/error_estimate.h"
 #include "renderer/gl_context.h"
 #include "renderer/gl_program.h"
+#include "renderer/llvmpipe_threads.h"
 #include "renderer/loop_budget.h"
 #include "renderer/loop_shapes.h"
 #include "renderer/path_restart.h"
@@ -132,6 +133,8 @@ GpuRenderer::GpuRenderer(GpuRendererOptions options) : renderer_options_(options
   const LoopShapesBlock empty;
   glNamedBufferData(loop_shapes_buffer_, sizeof empty, &empty, GL_DYNAMIC_DRAW);
   llvmpipe_ = on_llvmpipe();
+  // One CPU per llvmpipe thread, so that short passes use every CPU (llvmpipe_threads.h).
+  if (llvmpipe_) pin_llvmpipe_threads();
   // Every table is bound for every pass: never without storage, even before a scene or a BVH
   // exists.
   upload_table(0, std::vector<GpuSphere>{});
