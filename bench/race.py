@@ -2,16 +2,21 @@
 against its own converged image, and the ratio Glint time / Mitsuba time (the target: at most
 0.5 on every scene that both model, against both samplers).
 
-A time comes from the log-log fit of mean relMSE against trace time. Inside the measured range it
-is a measurement; below the first point it is an upper bound (the first point's time); past the
-last point it is the fit's extrapolation, marked "fit". A ratio inherits the marks: an upper bound
-on Glint's time makes it an upper bound, one on Mitsuba's a lower bound, and either time from the
-fit makes it "fit".
+A time comes from the ladder of mean relMSE against trace time (rungs of doubling spp). Inside the
+measured range it is interpolated, linearly in log-log, between the two rungs on either side of
+the target; below the first rung it is an upper bound (the first rung's time); past the last rung
+it is the extrapolation of a log-log fit of the last TAIL_RUNGS rungs, marked "fit". Only the top
+rungs: the low ones carry a fixed cost per render (start of the passes, threads waking) and
+low-discrepancy errors that fall faster than 1/N at first, so a fit of the whole ladder tilts
+with them and puts the extrapolated time where no long render would be. A ratio inherits the
+marks: an upper bound on Glint's time makes it an upper bound, one on Mitsuba's a lower bound,
+and either time from the fit makes it "fit".
 """
 import math
 
 RACE_TARGETS = (1e-2, 1e-3)
 GOAL = 0.5
+TAIL_RUNGS = 4  # the rungs fitted for an extrapolation (32 to 256 spp of a 1-256 ladder)
 
 
 def _fit(x, y):
@@ -32,18 +37,24 @@ def _fit(x, y):
 
 def time_to(summary, target):
     """(seconds, mark): mark "" measured, "<=" upper bound, "fit" extrapolated; (None, why)."""
-    t, e = summary["seconds"], summary["relmse"]
-    fit = _fit(t, e)
-    if fit is None:
+    pts = [(u, v) for u, v in zip(summary["seconds"], summary["relmse"])
+           if u > 0 and v > 0 and math.isfinite(u) and math.isfinite(v)]
+    if len(pts) < 2:
         return None, "no fit"
-    if e[0] <= target:
-        return t[0], "<="
-    if fit[1] >= 0:
+    if pts[0][1] <= target:
+        return pts[0][0], "<="
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e1 <= target:  # the first rung at the target: interpolate from the one before
+            w = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
+            return math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0))), ""
+    tail = pts[-TAIL_RUNGS:]
+    fit = _fit([p[0] for p in tail], [p[1] for p in tail])
+    if fit is None or fit[1] >= 0:
         return None, "not converging"
     log_t = (math.log(target) - fit[0]) / fit[1]
-    if e[-1] > target and log_t > math.log(1e7):  # a nearly flat fit: past any useful time
+    if log_t > math.log(1e7):  # a nearly flat fit: past any useful time
         return None, "fit: > 100 days"
-    return math.exp(log_t), ("fit" if e[-1] > target else "")
+    return math.exp(log_t), "fit"
 
 
 def ratio(g, m):
@@ -115,9 +126,11 @@ def markdown(race_rows, ld, fmt_s):
          f"default sampler (Owen-scrambled Sobol), Mitsuba with `independent` and with `{ld}` (the "
          "winner of the equal-spp trial below); each against its own converged image, so that "
          "the times measure noise only. Ratio = Glint's time / Mitsuba's; the target is at most "
-         f"{GOAL} against both samplers. \"(fit)\": a time past the last rung of that ladder, "
-         "the log-log fit's extrapolation (not measured); \"<=\": already reached at the first "
-         "rung, so the time is at most that rung's.\n"]
+         f"{GOAL} against both samplers. A time inside a ladder is interpolated (log-log) "
+         "between the rungs on either side of the target; \"(fit)\": a time past the last rung "
+         f"of that ladder, extrapolated from a log-log fit of its last {TAIL_RUNGS} rungs (not "
+         "measured); \"<=\": already reached at the first rung, so the time is at most that "
+         "rung's.\n"]
     for target in RACE_TARGETS:
         L.append(f"| scene | Glint t({target:g}) | Mitsuba independent | ratio | Mitsuba {ld} | ratio | target met |")
         L.append("|---|---|---|---|---|---|---|")

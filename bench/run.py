@@ -112,22 +112,16 @@ def fit_eval(fit, x):
     return math.exp(fit[0] + fit[1] * math.log(x))
 
 
-def time_to(fit, target, t_min, t_max, e_first, e_last):
-    """Seconds to reach `target` on the fit, inside the measured range; else a phrase."""
-    if fit is None:
-        return "n/a"
-    if e_first <= target:
-        return f"<= {fmt_s(t_min)}"
-    if fit[1] >= 0 or e_last > target:
-        # Not measured down to the target: say where the fit would put it, not a number.
-        if fit[1] < 0:
-            log_t = (math.log(target) - fit[0]) / fit[1]
-            # A nearly flat fit extrapolates past any useful time (and past float range).
-            if log_t > math.log(1e7):
-                return "not reached (fit: > 100 days)"
-            return f"not reached (fit: {fmt_s(math.exp(log_t))})"
-        return "not reached"
-    return fmt_s(math.exp((math.log(target) - fit[0]) / fit[1]))
+def time_to(summary, target):
+    """The time to `target` as bench/race.py reads it from a ladder, as text: interpolated
+    between the rungs around it, "<= first rung", or past the last rung "not reached" with the
+    extrapolation of the top rungs' fit."""
+    t, mark = race.time_to(summary, target)
+    if t is None:
+        return {"no fit": "n/a", "not converging": "not reached"}.get(mark, f"not reached ({mark})")
+    if mark == "<=":
+        return f"<= {fmt_s(t)}"
+    return f"not reached (fit: {fmt_s(t)})" if mark == "fit" else fmt_s(t)
 
 
 def fmt_s(t):
@@ -372,15 +366,16 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
         top = [x for x in rows if x["spp"] == s["spp"][-1]]
         w, h = r["size"]
         secs = s["seconds"][-1]
-        tt = [time_to(ft, t, s["seconds"][0], s["seconds"][-1], s["relmse"][0], s["relmse"][-1])
-              for t in TARGETS]
+        tt = [time_to(s, t) for t in TARGETS]
         L.append(f"| {name} | {w}x{h} | {s['spp'][-1] * w * h / secs / 1e6:.3g} | "
                  f"{s['spp'][-1] / secs:.3g} | {g3(fs[1] if fs else None)} | {g3(ft[1] if ft else None)} | "
                  f"{s['relmse'][-1]:.3g} | {np.mean([x['relmse_trimmed'] for x in top]):.3g} | "
                  f"{s['flip'][-1]:.3g} | " + " | ".join(tt) + " |")
-    L.append("\nTimes to error come from the log-log fit of mean relMSE against time, used only "
-             "inside the measured range; \"not reached\" gives the fit's extrapolation in "
-             "brackets. Samples per second are at the largest sample count.\n")
+    L.append("\nTimes to error are read from the ladder of mean relMSE against time as the race "
+             "reads them (bench/race.py): interpolated (log-log) between the two rungs around the "
+             f"target; \"not reached\" gives in brackets the extrapolation of a log-log fit of the "
+             f"last {race.TAIL_RUNGS} rungs. The slopes are fits of the whole ladder. Samples per "
+             "second are at the largest sample count.\n")
     for f in plot_files:
         L.append(f"![{f}]({f})\n")
     furnace = results.get("white_furnace")
@@ -433,8 +428,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
                  f"{m['noise']:.3g} | {g3(m['ratio'])} | {fmt_s(m['t_star'])} | "
                  f"{ms['spp'][-1] * m['pixels'] / ms['seconds'][-1] / 1e6:.3g} | "
                  f"{g3(m['fit_time'][1] if m['fit_time'] else None)} | "
-                 f"{time_to(loglog_fit(gs['seconds'], gs['relmse']), 1e-2, gs['seconds'][0], gs['seconds'][-1], gs['relmse'][0], gs['relmse'][-1])} | "
-                 f"{time_to(m['fit_time'], 1e-2, ms['seconds'][0], ms['seconds'][-1], ms['relmse'][0], ms['relmse'][-1])} |")
+                 f"{time_to(gs, 1e-2)} | {time_to(ms, 1e-2)} |")
     L.append("")
     # Why the equal-time ratio is what it is: samples per second on the same two cores, and
     # what is left for the noise of one sample.

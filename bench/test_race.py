@@ -4,6 +4,7 @@ ratios inherit from them (standard library only; the ctest bench.race runs it).
 
     python3 bench/test_race.py
 """
+import math
 import os
 import sys
 import unittest
@@ -29,6 +30,25 @@ class TimeTo(unittest.TestCase):
         self.assertEqual(race.time_to(flat, 1e-3), (None, "fit: > 100 days"))
         rising = {"seconds": [1, 2, 4], "relmse": [0.1, 0.2, 0.4]}
         self.assertEqual(race.time_to(rising, 1e-3), (None, "not converging"))
+
+    def test_inside_interpolates_between_the_rungs_around_the_target(self):
+        # A fixed 1 s per render on top of 1 s per sample: relMSE = 0.1 / spp.
+        spp = [1, 2, 4, 8, 16]
+        ladder = {"seconds": [1.0 + n for n in spp], "relmse": [0.1 / n for n in spp]}
+        t, mark = race.time_to(ladder, 0.1 / 3)  # between the rungs of 2 and 4 spp (3 s, 5 s)
+        self.assertEqual(mark, "")
+        w = math.log(3 / 2) / math.log(2)  # where 1/3 lies between 1/2 and 1/4, in log
+        self.assertAlmostEqual(t, math.exp(math.log(3) + w * math.log(5 / 3)))
+        self.assertEqual(race.time_to(ladder, 0.1 / 16), (17.0, ""))  # exactly at the last rung
+
+    def test_past_the_ladder_only_the_top_rungs_are_fitted(self):
+        # The first rungs fall as spp^-2 (and are cheap), the last four as spp^-1.
+        seconds = [1, 2, 4, 8, 16, 32, 64]
+        relmse = [1.0, 0.25, 0.0625, 0.03125, 0.015625, 0.0078125, 0.00390625]
+        t, mark = race.time_to({"seconds": seconds, "relmse": relmse}, 0.00390625 / 10)
+        self.assertEqual(mark, "fit")
+        self.assertAlmostEqual(t, 640.0)  # the tail's slope of -1, not the whole ladder's
+        self.assertEqual(race.TAIL_RUNGS, 4)
 
 
 class Ratio(unittest.TestCase):
