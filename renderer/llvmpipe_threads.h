@@ -1,10 +1,10 @@
 // Where Mesa's llvmpipe runs its rasterizer threads. llvmpipe shades a draw on threads of its
-// own ("llvmpipe-0", "llvmpipe-1", ..., one per CPU by default), which sleep between draws. Linux
-// wakes a thread on or near the CPU of the thread that wakes it: once they have slept for a
-// while (10 ms sufficed on the development machine), a draw can start with two of them sharing
-// one CPU while another CPU stays idle, and a draw of a few milliseconds then takes as long as on
-// one thread (bench/THROUGHPUT.md, "Short passes and llvmpipe's threads"). Pinning thread k to
-// the k-th CPU that this process may use keeps them apart. Linux only; elsewhere nothing is done.
+// own ("llvmpipe-0", "llvmpipe-1", ..., one per CPU by default), which sleep between draws. Once
+// they had slept for a while (10 ms sufficed on the development machine), a draw often started
+// with two of them on one CPU while another CPU stayed idle (Linux wakes a thread near the thread
+// that wakes it), and a draw of a few milliseconds then took as long as on one thread
+// (bench/THROUGHPUT.md, "Short passes and llvmpipe's threads"). Pinning thread k to the k-th CPU
+// that this process may use keeps them apart. Linux only; elsewhere nothing is done.
 #pragma once
 
 #include <string>
