@@ -4,6 +4,7 @@
 #include "renderer/image.h"
 
 #include "renderer/atomic_file.h"
+#include "renderer/exr_checks.h"
 
 #include <algorithm>
 #include <array>
@@ -349,29 +350,6 @@ std::string take_exr_error(const char* err, int code) {
   return message;
 }
 
-// tinyexr (1.0.1) reads a "tiles" attribute as 9 bytes whatever size the file gives it: a
-// shorter one is read past its end (fuzz_image found it; tinyexr's assert on the size is gone
-// in release builds). So the single-part header's attributes (name, type, 32-bit little-endian
-// size, data) are walked first; a malformed walk is left to tinyexr to report. Returns what is
-// wrong, or "".
-std::string unsafe_exr_attribute(const std::vector<unsigned char>& bytes) {
-  size_t at = 8;  // after the magic number and the version field
-  while (at < bytes.size() && bytes[at] != 0) {
-    const auto name_end = std::find(bytes.begin() + at, bytes.end(), 0);
-    if (name_end == bytes.end()) return "";
-    const auto type_end = std::find(name_end + 1, bytes.end(), 0);
-    if (type_end == bytes.end() || bytes.end() - type_end < 5) return "";
-    const size_t size_at = static_cast<size_t>(type_end - bytes.begin()) + 1;
-    const uint32_t size = uint32_t(bytes[size_at]) | uint32_t(bytes[size_at + 1]) << 8 |
-                          uint32_t(bytes[size_at + 2]) << 16 | uint32_t(bytes[size_at + 3]) << 24;
-    const std::string name(bytes.begin() + at, name_end);
-    if (name == "tiles" && size != 9)
-      return "attribute 'tiles' is " + std::to_string(size) + " bytes, not 9";
-    at = size_at + 4 + size;
-  }
-  return "";
-}
-
 void parse_exr_header(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
                       ExrFile& exr) {
   int ret = ParseEXRVersionFromMemory(&exr.version, bytes.data(), bytes.size());
@@ -440,11 +418,32 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     index[0] = index[1] = index[2] = luminance;
   }
 
+  // tinyexr's PIZ decoder reads past a malformed block (exr_checks.h): the blocks are checked
+  // first, and decoded from a copy with padding.
+  std::vector<unsigned char> padded;
+  if (header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ) {
+    if (header.tiled) fail(path, "tiled PIZ-compressed OpenEXR files are not supported");
+    ExrScanlineLayout layout;
+    layout.table_start = 8 + size_t(header.header_len);
+    layout.min_y = header.data_window.min_y;
+    layout.width = header.data_window.max_x - header.data_window.min_x + 1;
+    layout.height = header.data_window.max_y - header.data_window.min_y + 1;
+    layout.blocks = header.chunk_count > 0 ? header.chunk_count
+                                           : (layout.height + layout.lines_per_block - 1) / layout.lines_per_block;
+    for (int c = 0; c < header.num_channels; ++c)
+      layout.bytes_per_pixel += header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
+    if (const std::string unsafe = unsafe_piz_blocks(bytes, layout); !unsafe.empty())
+      fail(path, "corrupt OpenEXR data (" + unsafe + ")");
+    padded.reserve(bytes.size() + kPizReadPadding);
+    padded.assign(bytes.begin(), bytes.end());
+    padded.resize(bytes.size() + kPizReadPadding, 0);
+  }
   // tinyexr frees a half-decoded image itself when decoding fails, but only the channels that
   // exr.image.num_channels counts, which it sets on success: preset it so that nothing leaks.
   exr.image.num_channels = header.num_channels;
   const char* err = nullptr;
-  const int ret = LoadEXRImageFromMemory(&exr.image, &header, bytes.data(), bytes.size(), &err);
+  const int ret = LoadEXRImageFromMemory(&exr.image, &header, padded.empty() ? bytes.data() : padded.data(),
+                                         bytes.size(), &err);
   if (ret != TINYEXR_SUCCESS) fail(path, "cannot decode OpenEXR data (" + take_exr_error(err, ret) + ")");
   exr.image_loaded = true;
 
