@@ -56,6 +56,20 @@ std::string unsafe_exr_attribute(const std::vector<unsigned char>& bytes) {
   return "";
 }
 
+std::string unsafe_offset_table(size_t file_size, size_t table_start, unsigned long long entries) {
+  const unsigned long long room = file_size > table_start ? (file_size - table_start) / 8 : 0;
+  if (entries <= room) return "";
+  return "an offset table of " + std::to_string(entries) + " entries does not fit in the file's " +
+         std::to_string(file_size) + " bytes";
+}
+
+unsigned long long level0_tiles(int width, int height, int tile_width, int tile_height) {
+  if (tile_width < 1 || tile_height < 1 || width < 1 || height < 1) return 0;
+  const unsigned long long across = (static_cast<unsigned long long>(width) + tile_width - 1) / tile_width;
+  const unsigned long long down = (static_cast<unsigned long long>(height) + tile_height - 1) / tile_height;
+  return across * down;
+}
+
 std::string unsafe_piz_blocks(const std::vector<unsigned char>& bytes, const ExrScanlineLayout& layout) {
   const uint64_t file = bytes.size();
   const uint64_t table_end = layout.table_start + 8 * uint64_t(std::max(0, layout.blocks));

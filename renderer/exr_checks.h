@@ -15,6 +15,16 @@ namespace glint {
 // single-part header's attributes (name, type, 32-bit little-endian size, data).
 std::string unsafe_exr_attribute(const std::vector<unsigned char>& bytes);
 
+// tinyexr sizes its offset table (8 bytes an entry) from the header before reading it: from a
+// chunkCount attribute, or in a tiled file from the tile size (1x1 tiles of a 16384x16384 image
+// make 2^28 entries, 2 GiB). A table of `entries` that cannot fit in the file after
+// `table_start` is refused before tinyexr allocates it.
+std::string unsafe_offset_table(size_t file_size, size_t table_start, unsigned long long entries);
+
+// The offset table entries of level 0 of a tiled image (tinyexr adds the other levels of a
+// mipmap or ripmap), or 0 for tile sizes below 1.
+unsigned long long level0_tiles(int width, int height, int tile_width, int tile_height);
+
 // What locates and sizes the blocks of a single-part scanline file, from its parsed header.
 struct ExrScanlineLayout {
   size_t table_start = 0;  // the offset table's first byte: 8 + tinyexr's header_len

@@ -418,6 +418,22 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     index[0] = index[1] = index[2] = luminance;
   }
 
+  // tinyexr allocates the offset table that the header implies before reading it
+  // (exr_checks.h): a table that the file cannot hold is refused first.
+  {
+    const int width = header.data_window.max_x - header.data_window.min_x + 1;
+    const int height = header.data_window.max_y - header.data_window.min_y + 1;
+    unsigned long long entries = 0;
+    if (header.tiled) {
+      entries = level0_tiles(width, height, header.tile_size_x, header.tile_size_y);
+      if (entries == 0) fail(path, "bad OpenEXR header (tile size " + std::to_string(header.tile_size_x) + "x" +
+                                       std::to_string(header.tile_size_y) + ")");
+    } else if (header.chunk_count > 0) {
+      entries = static_cast<unsigned long long>(header.chunk_count);
+    }
+    const std::string unsafe = unsafe_offset_table(bytes.size(), 8 + size_t(header.header_len), entries);
+    if (!unsafe.empty()) fail(path, "bad OpenEXR header (" + unsafe + ")");
+  }
   // tinyexr's PIZ decoder reads past a malformed block (exr_checks.h): the blocks are checked
   // first, and decoded from a copy with padding.
   std::vector<unsigned char> padded;

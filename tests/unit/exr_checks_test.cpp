@@ -171,6 +171,28 @@ TEST(ExrChecks, MalformedPizBlocksAreNamed) {
   }
 }
 
+TEST(ExrChecks, OffsetTablesThatCannotFitAreRefused) {
+  EXPECT_EQ(unsafe_offset_table(1000, 200, 100), "");  // 800 bytes for 100 entries: fits
+  EXPECT_EQ(unsafe_offset_table(1000, 200, 101), "an offset table of 101 entries does not fit in the file's 1000 bytes");
+  EXPECT_EQ(unsafe_offset_table(100, 200, 1), "an offset table of 1 entries does not fit in the file's 100 bytes");
+  EXPECT_EQ(level0_tiles(16384, 16384, 1, 1), 1ull << 28);
+  EXPECT_EQ(level0_tiles(37, 70, 16, 32), 3ull * 3);
+  EXPECT_EQ(level0_tiles(37, 70, 0, 32), 0ull);
+
+  // A chunkCount attribute of 2^31 - 1 in a small scanline file (tinyexr would allocate 16 GiB
+  // for its table before reading it).
+  std::vector<unsigned char> bytes = piz_file(16, 16, TINYEXR_PIXELTYPE_HALF);
+  const std::string count("chunkCount\0int\0\x04\0\0\0\xff\xff\xff\x7f", 23);
+  bytes.insert(bytes.begin() + 8, count.begin(), count.end());
+  try {
+    load_image_data(bytes, "count.exr", ColorEncoding::linear);
+    ADD_FAILURE() << "loaded";
+  } catch (const ImageError& e) {
+    EXPECT_EQ(std::string(e.what()), "count.exr: bad OpenEXR header (an offset table of 2147483647 entries does not "
+                                     "fit in the file's " + std::to_string(bytes.size()) + " bytes)");
+  }
+}
+
 // Tiled PIZ files are refused outright (their blocks are not checked).
 TEST(ExrChecks, TiledPizFilesAreRefused) {
   std::vector<unsigned char> bytes = piz_file(16, 16, TINYEXR_PIXELTYPE_HALF);
