@@ -418,40 +418,37 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
     index[0] = index[1] = index[2] = luminance;
   }
 
-  // tinyexr allocates the offset table that the header implies before reading it
-  // (exr_checks.h): a table that the file cannot hold is refused first.
-  {
-    const int width = header.data_window.max_x - header.data_window.min_x + 1;
-    const int height = header.data_window.max_y - header.data_window.min_y + 1;
-    unsigned long long entries = 0;
-    if (header.tiled) {
-      entries = level0_tiles(width, height, header.tile_size_x, header.tile_size_y);
-      if (entries == 0) fail(path, "bad OpenEXR header (tile size " + std::to_string(header.tile_size_x) + "x" +
-                                       std::to_string(header.tile_size_y) + ")");
-    } else if (header.chunk_count > 0) {
-      entries = static_cast<unsigned long long>(header.chunk_count);
-    }
-    const std::string unsafe = unsafe_offset_table(bytes.size(), 8 + size_t(header.header_len), entries);
-    if (!unsafe.empty()) fail(path, "bad OpenEXR header (" + unsafe + ")");
+  // tinyexr allocates the offset table that the header implies before reading it, and its PIZ
+  // decoder reads past a malformed block (exr_checks.h): both are checked first, and a PIZ file
+  // is decoded from a copy with padding.
+  const int width = header.data_window.max_x - header.data_window.min_x + 1;
+  const int height = header.data_window.max_y - header.data_window.min_y + 1;
+  const size_t table_start = 8 + size_t(header.header_len);
+  unsigned long long entries = 0;  // 0: the table follows from the height alone (small)
+  if (header.tiled) {
+    entries = level0_tiles(width, height, header.tile_size_x, header.tile_size_y);
+    if (entries == 0) fail(path, "bad OpenEXR header (tile size " + std::to_string(header.tile_size_x) + "x" +
+                                     std::to_string(header.tile_size_y) + ")");
+  } else if (header.chunk_count > 0) {
+    entries = static_cast<unsigned long long>(header.chunk_count);
   }
-  // tinyexr's PIZ decoder reads past a malformed block (exr_checks.h): the blocks are checked
-  // first, and decoded from a copy with padding.
+  if (const std::string unsafe = unsafe_offset_table(bytes.size(), table_start, entries); !unsafe.empty())
+    fail(path, "bad OpenEXR header (" + unsafe + ")");
   std::vector<unsigned char> padded;
   if (header.compression_type == TINYEXR_COMPRESSIONTYPE_PIZ) {
     if (header.tiled) fail(path, "tiled PIZ-compressed OpenEXR files are not supported");
     ExrScanlineLayout layout;
-    layout.table_start = 8 + size_t(header.header_len);
+    layout.table_start = table_start;
     layout.min_y = header.data_window.min_y;
-    layout.width = header.data_window.max_x - header.data_window.min_x + 1;
-    layout.height = header.data_window.max_y - header.data_window.min_y + 1;
+    layout.width = width;
+    layout.height = height;
     layout.blocks = header.chunk_count > 0 ? header.chunk_count
-                                           : (layout.height + layout.lines_per_block - 1) / layout.lines_per_block;
+                                           : (height + layout.lines_per_block - 1) / layout.lines_per_block;
     for (int c = 0; c < header.num_channels; ++c)
       layout.bytes_per_pixel += header.pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2 : 4;
     if (const std::string unsafe = unsafe_piz_blocks(bytes, layout); !unsafe.empty())
       fail(path, "corrupt OpenEXR data (" + unsafe + ")");
-    padded.reserve(bytes.size() + kPizReadPadding);
-    padded.assign(bytes.begin(), bytes.end());
+    padded = bytes;
     padded.resize(bytes.size() + kPizReadPadding, 0);
   }
   // tinyexr frees a half-decoded image itself when decoding fails, but only the channels that
