@@ -178,7 +178,7 @@ Plan read_plan(const fs::path& dir) {
 }
 
 void write_text(const fs::path& file, const std::string& text) {
-  write_file_atomically(file, text.data(), text.size());
+  write_state_file_atomically(file, text.data(), text.size());
 }
 
 std::string sbatch_header(const Plan& p, const std::string& name, const fs::path& log) {

@@ -40,7 +40,7 @@ std::string write_text_atomic(const fs::path& file, const std::string& text) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
   try {
-    write_file_atomically(file, text.data(), text.size());
+    write_state_file_atomically(file, text.data(), text.size());
   } catch (const FileWriteError& e) {
     return e.problem;
   }

@@ -81,7 +81,7 @@ bool save_layout_if_needed(const fs::path& file, bool force, std::string& error)
   try {
     std::error_code ec;
     fs::create_directories(file.parent_path(), ec);
-    write_file_atomically(file, text, size);
+    write_state_file_atomically(file, text, size);
     error.clear();
     return true;
   } catch (const std::exception& e) {

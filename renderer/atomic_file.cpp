@@ -57,6 +57,32 @@ std::string write_all(int fd, const unsigned char* data, size_t size) {
   return "";
 }
 
+// "a FIFO" for a file that is not a regular file (from lstat or stat), "" for a regular one.
+std::string non_regular_kind(mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Why `target` (the end of the link chain from `file`) must not be replaced, or "": it exists
+// and is not a regular file.
+std::string target_problem(const fs::path& file, const fs::path& target) {
+  struct stat st {};
+  if (::lstat(target.c_str(), &st) != 0) return "";
+  const std::string kind = non_regular_kind(st.st_mode);
+  if (kind.empty()) return "";
+  if (S_ISDIR(st.st_mode) && target == file) return "is a folder";
+  if (target == file) return "is " + kind + ", not a regular file: not written";
+  return "is a symbolic link to " + target.string() + ", which is " + kind + ", not a regular file: not written";
+}
+
+void replace_file(const fs::path& file, const fs::path& target, const void* data, size_t size);
+
 }  // namespace
 
 FileWriteError::FileWriteError(const fs::path& file, std::string problem_)
@@ -79,10 +105,28 @@ fs::path write_target(const fs::path& file) {
 
 void write_file_atomically(const fs::path& file, const void* data, size_t size) {
   const fs::path target = write_target(file);
+  if (const std::string problem = target_problem(file, target); !problem.empty()) throw FileWriteError(file, problem);
+  replace_file(file, target, data, size);
+}
+
+void write_state_file_atomically(const fs::path& file, const void* data, size_t size) {
+  struct stat st {};
+  if (::lstat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    const std::string kind = non_regular_kind(st.st_mode);
+    throw FileWriteError(file, "is " + kind + "; Glint writes its own files only as regular files, never through "
+                               "a link (remove it to let Glint write there)");
+  }
+  replace_file(file, file, data, size);
+}
+
+namespace {
+
+// Writes a temporary file beside `target` and renames it over `target` (a regular file or
+// none), keeping the old file's mode and owner. `file` names it in errors.
+void replace_file(const fs::path& file, const fs::path& target, const void* data, size_t size) {
   const fs::path dir = folder_of(target);
   struct stat old {};
-  const bool replacing = ::stat(target.c_str(), &old) == 0;
-  if (replacing && S_ISDIR(old.st_mode)) throw FileWriteError(file, "is a folder");
+  const bool replacing = ::lstat(target.c_str(), &old) == 0;
 
   fs::path tmp;
   const int fd = create_temporary(dir, tmp);
@@ -101,6 +145,12 @@ void write_file_atomically(const fs::path& file, const void* data, size_t size) 
   if (error.empty()) error = write_all(fd, static_cast<const unsigned char*>(data), size);
   if (error.empty() && ::fsync(fd) != 0) error = "cannot write (fsync): " + os_error(errno);
   if (::close(fd) != 0 && error.empty()) error = "cannot write (close): " + os_error(errno);
+  // Checked again just before the rename: a FIFO or device put there during the write stays.
+  if (error.empty()) {
+    struct stat now {};
+    if (::lstat(target.c_str(), &now) == 0 && !S_ISREG(now.st_mode))
+      error = "became " + non_regular_kind(now.st_mode) + " while it was written: not replaced";
+  }
   if (error.empty() && ::rename(tmp.c_str(), target.c_str()) != 0)
     error = "cannot replace the file: " + os_error(errno);
   if (!error.empty()) {
@@ -113,6 +163,8 @@ void write_file_atomically(const fs::path& file, const void* data, size_t size) 
     ::close(dir_fd);
   }
 }
+
+}  // namespace
 
 std::optional<std::string> file_write_problem(const fs::path& file) {
   fs::path target;
@@ -134,7 +186,7 @@ std::optional<std::string> file_write_problem(const fs::path& file) {
   if (name_length > static_cast<size_t>(name_max))
     return os_error(ENAMETOOLONG) + " (the name has " + std::to_string(name_length) +
            " bytes, this file system allows " + std::to_string(name_max) + ")";
-  if (::stat(target.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) return "is a folder";
+  if (const std::string problem = target_problem(file, target); !problem.empty()) return problem;
   // Writability (permissions, a read-only mount, no space for a new file) is best known by
   // trying: the same call that write_file_atomically makes.
   fs::path tmp;

@@ -2,8 +2,13 @@
 // to a temporary file beside the target, every write, the fsync and the close are checked, and
 // only a complete file is renamed over the target. On any failure the temporary file is
 // removed and the old file stays as it was.
-//  - Symbolic links are written through: the final target of the link chain is replaced, the
-//    links stay.
+//  - A file the user named (an image, a project) may be a symbolic link to a regular file: it
+//    is written through (the final target of the link chain is replaced, the links stay). A
+//    link to, or a file that is, a device, FIFO, socket or folder is refused: nothing is ever
+//    renamed over a file that is not regular.
+//  - Glint's own files (caches, the editor's state, farm scripts and plans) are never written
+//    through a link: write_state_file_atomically refuses a path that is a link or any other
+//    non-regular file, so a link planted at such a path cannot redirect the write.
 //  - An existing target keeps its permission bits (and, best effort, its owner and group); a
 //    new file gets 0666 minus the umask, as any program creating a file.
 //  - Temporary names are unique and of a fixed short length (".glint-XXXXXXXX.tmp", created
@@ -25,14 +30,19 @@ struct FileWriteError : std::runtime_error {
   std::string problem;
 };
 
-// Replaces `file` with `size` bytes from `data` as described above. Throws FileWriteError
-// with the OS reason (e.g. "cannot write: No space left on device").
+// Replaces `file`, a file the user named, with `size` bytes from `data` as described above.
+// Throws FileWriteError with the OS reason (e.g. "cannot write: No space left on device").
 void write_file_atomically(const std::filesystem::path& file, const void* data, size_t size);
+
+// The same for one of Glint's own files: refused (FileWriteError) where `file` is a symbolic
+// link, a folder, a device, a FIFO or a socket.
+void write_state_file_atomically(const std::filesystem::path& file, const void* data, size_t size);
 
 // The problem that would stop write_file_atomically from writing `file`, found without
 // touching the target: a folder that does not exist or is not writable (with the OS reason,
 // e.g. "Read-only file system"; checked by creating and removing a temporary file there), a
-// name too long for the file system, a target that is a folder. nullopt when writable. For
+// name too long for the file system, a target that is a folder, a device, a FIFO or a socket.
+// nullopt when writable. For
 // commands that should fail before spending minutes on a render.
 std::optional<std::string> file_write_problem(const std::filesystem::path& file);
 

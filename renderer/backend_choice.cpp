@@ -4,14 +4,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
-#include "renderer/atomic_file.h"
+#include "renderer/state_file.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/llvmpipe_threads.h"
@@ -73,18 +71,40 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The cache as read: an object whose "devices" is an object, or an empty object where the file
+// is absent or is anything else (a FIFO, a folder, too large, not JSON), with `note` saying
+// which. The cache is untrusted input: a bad one is timed again and rewritten.
 nlohmann::json read_cache(const std::filesystem::path& file, std::string& note) {
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec)) return nlohmann::json::object();
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
-  if (!in || j.is_discarded() || !j.is_object() || !j.contains("devices") || !j["devices"].is_object()) {
-    note = file.string() + ": unreadable backend cache, timed again";
-    return nlohmann::json::object();
+  try {
+    const std::optional<std::string> text = read_state_file(file, kMaxStateFileBytes);
+    if (!text) return nlohmann::json::object();
+    nlohmann::json j = nlohmann::json::parse(*text, nullptr, false);
+    if (!j.is_discarded() && j.is_object() && j.contains("devices") && j["devices"].is_object()) return j;
+    note = file.string() + ": not a backend cache (no \"devices\" object), timed again";
+  } catch (const StateFileError& e) {
+    note = std::string(e.what()) + "; backend timed again";
   }
-  return j;
+  return nlohmann::json::object();
+}
+
+// The choice a cache entry records, or nullopt where any of its fields is missing or mistyped
+// (then the device is timed again and the entry replaced).
+std::optional<BackendChoice> cached_choice(const nlohmann::json& entry) {
+  if (!entry.is_object()) return std::nullopt;
+  const auto backend = entry.find("backend");
+  const auto fragment = entry.find("fragment_spp_s");
+  const auto compute = entry.find("compute_spp_s");
+  if (backend == entry.end() || !backend->is_string() || fragment == entry.end() || !fragment->is_number() ||
+      compute == entry.end() || !compute->is_number())
+    return std::nullopt;
+  const auto parsed = parse_backend(backend->get<std::string>());
+  if (!parsed) return std::nullopt;
+  BackendChoice choice;
+  choice.backend = *parsed;
+  choice.from_cache = true;
+  choice.fragment_spp_s = fragment->get<double>();
+  choice.compute_spp_s = compute->get<double>();
+  return choice;
 }
 
 }  // namespace
@@ -105,7 +125,9 @@ std::string device_key() {
 }
 
 std::optional<std::filesystem::path> default_backend_cache_file() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+  // The XDG Base Directory specification: a relative path in XDG_CACHE_HOME is invalid and
+  // ignored (else the cache would land in whatever folder a render starts in).
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg == '/')
     return std::filesystem::path(xdg) / "glint" / "backend.json";
   if (const char* home = std::getenv("HOME"); home && *home)
     return std::filesystem::path(home) / ".cache" / "glint" / "backend.json";
@@ -150,18 +172,12 @@ BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_f
   nlohmann::json cache = nlohmann::json::object();
   if (cache_file) {
     cache = read_cache(*cache_file, choice.note);
-    if (cache.contains("devices")) {
-      const nlohmann::json& entry = cache["devices"].value(key, nlohmann::json());
-      if (entry.is_object() && entry.contains("backend") && entry["backend"].is_string()) {
-        if (auto backend = parse_backend(entry["backend"].get<std::string>())) {
-          choice.backend = *backend;
-          choice.from_cache = true;
-          choice.fragment_spp_s = entry.value("fragment_spp_s", 0.0);
-          choice.compute_spp_s = entry.value("compute_spp_s", 0.0);
-          choice.seconds = seconds_since(start);
-          return choice;
-        }
+    if (cache.contains("devices") && cache["devices"].contains(key)) {
+      if (auto cached = cached_choice(cache["devices"][key])) {
+        cached->seconds = seconds_since(start);
+        return *cached;
       }
+      choice.note = cache_file->string() + ": a bad entry for this device, timed again";
     }
   }
   const BackendTiming timing = time_backends();
@@ -177,7 +193,7 @@ BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_f
       std::error_code ec;
       std::filesystem::create_directories(cache_file->parent_path(), ec);
       const std::string text = cache.dump(2) + "\n";
-      write_file_atomically(*cache_file, text.data(), text.size());
+      write_state_file(*cache_file, text);
     } catch (const std::exception& e) {
       choice.note = std::string("backend cache not written: ") + e.what();
     }

@@ -8,7 +8,9 @@
 // digest of the trace shaders' text and of the timing's method (a driver update, a changed path
 // tracer or a changed timing times again). A
 // cache that cannot be read or written never stops a render: the choice is timed instead, and
-// `note` says so in one line.
+// `note` says so in one line. The cache is untrusted (renderer/state_file.h): a FIFO, a folder,
+// a huge file or a mistyped field is treated as no cache, and it is never written through a
+// symbolic link.
 #pragma once
 
 #include <algorithm>
@@ -32,8 +34,8 @@ struct BackendChoice {
 // GL_VENDOR | GL_RENDERER | GL_VERSION of the current context.
 std::string device_key();
 
-// The cache file from the environment ($XDG_CACHE_HOME, else $HOME/.cache); nullopt when
-// neither is set (then nothing is cached).
+// The cache file from the environment ($XDG_CACHE_HOME where it is an absolute path, else
+// $HOME/.cache); nullopt when neither is set (then nothing is cached).
 std::optional<std::filesystem::path> default_backend_cache_file();
 
 // Both backends' samples per pixel per second on the timing scene (8 matte balls on a floor
