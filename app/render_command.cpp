@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -88,7 +89,9 @@ const char* const kUsage =
     "                     (less noise, but blur and artefacts that no sample count removes);\n"
     "                     an .exr keeps the noisy colour as the layer noisy.R/G/B. Refused\n"
     "                     with --reference/--log, whose error is the unbiased render's. Where\n"
-    "                     the library is missing, says so and writes the noisy image\n"
+    "                     the library is missing, says so and writes the noisy image;\n"
+    "                     the noisy image is written before denoising, so a denoiser that\n"
+    "                     fails leaves it in place (exit 1)\n"
     "  --denoise-quality Q  high (the default) or fast (quicker, less detail)\n"
     "  --aovs             .exr only: also write the albedo (albedo.R/G/B) and the normal\n"
     "                     (N.X/Y/Z, world space) at the first surface that is not a perfect\n"
@@ -169,6 +172,19 @@ double parse_positive(const std::string& option, const std::string& text, const 
   return v;
 }
 
+// A luminance the GPU holds as a normal float: a smaller one would be flushed to zero (which
+// turns the clamp off), a larger one becomes infinity.
+float parse_clamp(const std::string& option, const std::string& text) {
+  const double v = parse_positive(option, text, "luminance");
+  if (v < std::numeric_limits<float>::min() || v > std::numeric_limits<float>::max()) {
+    char range[96];
+    std::snprintf(range, sizeof range, "from %.3g to %.3g (what a GPU's float holds)",
+                  double(std::numeric_limits<float>::min()), double(std::numeric_limits<float>::max()));
+    throw UsageError{option + " expects a luminance " + range + ", got '" + text + "'"};
+  }
+  return static_cast<float>(v);
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 0; i < argc; ++i) {
@@ -221,7 +237,7 @@ Options parse(int argc, char** argv) {
     } else if (a == "--no-light-sampling") o.estimator.light_sampling = false;
     else if (a == "--no-env-sampling") o.estimator.environment_sampling = false;
     else if (a == "--no-roulette") o.estimator.russian_roulette = false;
-    else if (a == "--clamp") o.estimator.clamp = static_cast<float>(parse_positive(a, value(), "luminance"));
+    else if (a == "--clamp") o.estimator.clamp = parse_clamp(a, value());
     else if (a == "--generic-shader") o.generic_shader = true;
     else if (a == "--denoise") o.output_options.denoise = true;
     else if (a == "--aovs") o.output_options.aovs = true;
@@ -553,6 +569,7 @@ int run_render_command(int argc, char** argv) {
                    defines.empty() ? "" : ": ", defines.c_str());
     }
 
+    std::string denoise_failure;  // the noisy image is written; the command still fails
     if (o.samples) {
       save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
     } else {
@@ -560,6 +577,7 @@ int run_render_command(int argc, char** argv) {
       if (written.denoised)
         std::fprintf(stderr, "glint: denoised (biased) with Open Image Denoise on the %s in %.2f s\n",
                      written.device.c_str(), written.denoise_seconds);
+      if (written.denoise_failed) denoise_failure = written.note;
     }
     if (double discarded = nonfinite_count(renderer.read_accumulation()); discarded > 0)
       std::fprintf(stderr, "warning: %.0f samples were discarded (non-finite, or a BVH traversal past its step cap)\n",
@@ -573,6 +591,10 @@ int run_render_command(int argc, char** argv) {
       std::fprintf(stderr, "glint: wrote %s (last row: relMSE %.4g, trimmed %.4g, bias %+.4g)\n",
                    o.log.c_str(), last_metrics.relmse, last_metrics.relmse_trimmed,
                    last_metrics.mean_bias);
+    }
+    if (!denoise_failure.empty()) {
+      std::fprintf(stderr, "glint render: %s\n", denoise_failure.c_str());
+      return 1;
     }
     return 0;
   } catch (const UsageError& e) {  // arguments that conflict with each other or the project

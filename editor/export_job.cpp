@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include <epoxy/gl.h>
 
@@ -123,6 +124,7 @@ void ExportJob::finish() {
     RenderOutputOptions options;
     options.denoise = true;
     const RenderOutputReport report = save_render_images(images, display, output, options);
+    if (report.denoise_failed) throw std::runtime_error(report.note);  // the noisy image is written
     if (!report.denoised) return report.note;
     char text[160];
     std::snprintf(text, sizeof text, "denoised (biased) on the %s in %.2f s", report.device.c_str(),

@@ -80,9 +80,9 @@ nlohmann::json read_cache(const std::filesystem::path& file, std::string& note) 
     if (!text) return nlohmann::json::object();
     nlohmann::json j = nlohmann::json::parse(*text, nullptr, false);
     if (!j.is_discarded() && j.is_object() && j.contains("devices") && j["devices"].is_object()) return j;
-    note = file.string() + ": not a backend cache (no \"devices\" object), timed again";
+    note = file.string() + ": unreadable backend cache (not a JSON object with \"devices\"), timed again";
   } catch (const StateFileError& e) {
-    note = std::string(e.what()) + "; backend timed again";
+    note = std::string(e.what()) + " (unreadable backend cache, timed again)";
   }
   return nlohmann::json::object();
 }
@@ -177,7 +177,8 @@ BackendChoice choose_backend(const std::optional<std::filesystem::path>& cache_f
         cached->seconds = seconds_since(start);
         return *cached;
       }
-      choice.note = cache_file->string() + ": a bad entry for this device, timed again";
+      choice.note = cache_file->string() + ": unreadable backend cache entry for this device (a field missing "
+                    "or mistyped), timed again";
     }
   }
   const BackendTiming timing = time_backends();

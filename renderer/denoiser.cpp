@@ -50,7 +50,10 @@ std::vector<std::filesystem::path> library_folders() {
   return folders;
 }
 
-void* open_library() {
+// Returns the handle, or nullptr with `why` holding the first real reason: a library found
+// but not loadable (corrupt, of another architecture, a missing dependency) is reported as
+// such, not as the "not found" of the last place tried.
+void* open_library(std::string& why) {
   // Intel's libraries find each other through an RPATH of $ORIGIN/../lib, which does not hold
   // next to an executable: their dependencies are loaded first, by full path, so that the
   // loader finds them already loaded by their sonames. OIDN itself loads its device plugins
@@ -61,8 +64,19 @@ void* open_library() {
     for (const char* dependency : {"libtbb.so.12", "libOpenImageDenoise_core.so.2.5.1"})
       dlopen((folder / dependency).c_str(), RTLD_NOW | RTLD_GLOBAL);
     if (void* handle = dlopen(main.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
+    if (why.empty()) {
+      const char* error = dlerror();
+      why = main.string() + " cannot be loaded (" + (error ? error : "unknown reason") + ")";
+    }
   }
-  return dlopen("libOpenImageDenoise.so.2", RTLD_NOW | RTLD_LOCAL);
+  if (void* handle = dlopen("libOpenImageDenoise.so.2", RTLD_NOW | RTLD_LOCAL)) return handle;
+  if (why.empty()) {
+    const char* error = dlerror();
+    why = std::string("libOpenImageDenoise.so.2.5.1 not found next to the executable, in $GLINT_OIDN_DIR or on "
+                      "the library path") + (error ? std::string(" (") + error + ")" : std::string()) +
+          "; scripts/setup.sh fetches it and the build copies it next to glint";
+  }
+  return nullptr;
 }
 
 template <typename Fn>
@@ -74,13 +88,10 @@ bool resolve(void* handle, const char* name, Fn& fn, OidnLibrary& lib) {
 
 OidnLibrary load_library() {
   OidnLibrary lib;
-  void* handle = open_library();
+  std::string why;
+  void* handle = open_library(why);
   if (!handle) {
-    const char* why = dlerror();
-    lib.unavailable = std::string("libOpenImageDenoise.so.2.5.1 not found next to the executable, in "
-                                  "$GLINT_OIDN_DIR or on the library path") +
-                      (why ? std::string(" (") + why + ")" : std::string()) +
-                      "; scripts/setup.sh fetches it and the build copies it next to glint";
+    lib.unavailable = why;
     return lib;
   }
   resolve(handle, "oidnNewDevice", lib.new_device, lib);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <new>
 #include <optional>
 #include <vector>
 
@@ -31,28 +32,12 @@ RenderImages read_render_images(const GpuRenderer& renderer) {
   return {render_colour(renderer), renderer.read_aovs()};
 }
 
-RenderOutputReport save_render_images(const RenderImages& images, const DisplaySettings& display,
-                                      const std::filesystem::path& file,
-                                      const RenderOutputOptions& options, Denoiser* denoiser) {
-  RenderOutputReport report;
-  const Image& noisy = images.colour;
-  const AovImages& aovs = images.aovs;
-  const bool have_aovs = !aovs.albedo.pixels.empty();
-  std::optional<Image> denoised;
-  if (options.denoise) {
-    if (const auto why = denoising_unavailable()) {
-      report.note = "denoising is unavailable (" + *why + "): the noisy image was written";
-    } else {
-      std::unique_ptr<Denoiser> own;
-      if (!denoiser) denoiser = (own = std::make_unique<Denoiser>(options.quality)).get();
-      const auto start = std::chrono::steady_clock::now();
-      denoised = have_aovs ? denoiser->denoise(noisy, &aovs.albedo, &aovs.normal) : denoiser->denoise(noisy);
-      report.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      report.denoised = true;
-      report.device = denoiser->device_name();
-    }
-  }
-  const Image& colour = denoised ? *denoised : noisy;
+namespace {
+
+// Writes `colour` as `file` by its extension: PNG tonemapped, HDR linear, EXR with the layers
+// asked for (`noisy` beside a denoised colour, the AOVs).
+void write_output(const std::filesystem::path& file, const Image& colour, const Image* noisy,
+                  const AovImages* aovs, const DisplaySettings& display) {
   const std::string ext = file.extension().string();
   if (ext == ".png") {
     save_image(file, tonemapped(colour, display));
@@ -60,13 +45,53 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
     save_image(file, colour);
   } else {
     std::vector<ExrLayer> layers{{"", &colour, "RGBA"}};
-    if (denoised) layers.push_back({"noisy", &noisy, "RGB"});
-    if (options.aovs && have_aovs) {
-      layers.push_back({"albedo", &aovs.albedo, "RGB"});
-      layers.push_back({"N", &aovs.normal, "XYZ"});
+    if (noisy) layers.push_back({"noisy", noisy, "RGB"});
+    if (aovs) {
+      layers.push_back({"albedo", &aovs->albedo, "RGB"});
+      layers.push_back({"N", &aovs->normal, "XYZ"});
     }
     save_exr_layers(file, layers);
   }
+}
+
+}  // namespace
+
+RenderOutputReport save_render_images(const RenderImages& images, const DisplaySettings& display,
+                                      const std::filesystem::path& file,
+                                      const RenderOutputOptions& options, Denoiser* denoiser) {
+  RenderOutputReport report;
+  const Image& noisy = images.colour;
+  const AovImages& aovs = images.aovs;
+  const AovImages* layers = options.aovs && !aovs.albedo.pixels.empty() ? &aovs : nullptr;
+  // The noisy render first: a denoiser that fails (a device plugin missing or broken, memory
+  // exhausted at a large size) must not cost the finished render.
+  write_output(file, noisy, nullptr, layers, display);
+  if (!options.denoise) return report;
+  if (const auto why = denoising_unavailable()) {
+    report.note = "denoising is unavailable (" + *why + "): the noisy image was written";
+    return report;
+  }
+  std::optional<Image> denoised;
+  try {
+    std::unique_ptr<Denoiser> own;
+    if (!denoiser) denoiser = (own = std::make_unique<Denoiser>(options.quality)).get();
+    const auto start = std::chrono::steady_clock::now();
+    const bool guided = !aovs.albedo.pixels.empty();
+    denoised = guided ? denoiser->denoise(noisy, &aovs.albedo, &aovs.normal) : denoiser->denoise(noisy);
+    report.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.device = denoiser->device_name();
+  } catch (const std::bad_alloc&) {
+    report.denoise_failed = true;
+    report.note = "denoising failed (out of memory at " + std::to_string(noisy.width) + "x" +
+                  std::to_string(noisy.height) + "): " + file.string() + " holds the noisy image";
+    return report;
+  } catch (const DenoiseError& e) {
+    report.denoise_failed = true;
+    report.note = std::string("denoising failed (") + e.what() + "): " + file.string() + " holds the noisy image";
+    return report;
+  }
+  write_output(file, *denoised, &noisy, layers, display);
+  report.denoised = true;
   return report;
 }
 

@@ -21,7 +21,8 @@ struct RenderOutputOptions {
   // whole render) as the EXR layers albedo.R/G/B and N.X/Y/Z. .exr only.
   bool aovs = false;
   // The output is the denoised colour; an EXR keeps the noisy one as the layer noisy.R/G/B.
-  // Needs the AOVs too. Without the library, the noisy image is written and `note` says so.
+  // Needs the AOVs too. The noisy image is always written first: without the library, or when
+  // the denoiser fails, it is what the file holds and `note` says so.
   bool denoise = false;
   DenoiseQuality quality = DenoiseQuality::high;
 };
@@ -30,6 +31,7 @@ struct RenderOutputReport {
   bool denoised = false;
   double denoise_seconds = 0;  // the filter's wall time, buffers included
   std::string device;          // the OIDN device that ran it
+  bool denoise_failed = false;  // the library was there but the denoiser failed (an error for the caller)
   std::string note;            // why it was not denoised, when asked to and it was not
 };
 
@@ -48,8 +50,9 @@ struct RenderImages {
 RenderImages read_render_images(const GpuRenderer& renderer);
 
 // Writes `file` (atomically) from images already read back: needs no GL, so it may run on a
-// worker thread. Throws ImageError naming the file, DenoiseError when OIDN fails. `denoiser`:
-// one to reuse, or nullptr for a new one.
+// worker thread. Throws ImageError naming the file. A denoiser that fails leaves the noisy
+// image written and says so in the report (denoise_failed, note). `denoiser`: one to reuse, or
+// nullptr for a new one.
 RenderOutputReport save_render_images(const RenderImages& images, const DisplaySettings& display,
                                       const std::filesystem::path& file,
                                       const RenderOutputOptions& options, Denoiser* denoiser = nullptr);

@@ -7,6 +7,8 @@
 #include <optional>
 #include <thread>
 
+#include <sys/stat.h>
+
 #include <nlohmann/json.hpp>
 
 #include "renderer/backend_choice.h"
@@ -17,6 +19,8 @@
 
 namespace glint {
 namespace {
+
+namespace fs = std::filesystem;
 
 // Both run the same function (shaders/trace_common.glsl, add_samples) on the same random
 // numbers, compiled by the same driver from the same source except for the entry point, so the
@@ -190,6 +194,42 @@ TEST(GlBackendChoice, CorruptOrUnwritableCacheStillGivesAChoice) {
   EXPECT_EQ(unwritable.note.find('\n'), std::string::npos);
 }
 
+// The cache is untrusted: a FIFO (which would block a plain read), a folder, a mistyped field
+// and a link planted at its path are each treated as no cache and timed again; a FIFO, folder
+// or link is left as it is (nothing is written through the link or over the FIFO), a bad
+// entry is repaired.
+TEST(GlBackendChoice, HostileCacheFilesAreTimedAgainAndNeverWrittenThrough) {
+  test::ensure_gl_context();
+  test::TempDir dir;
+  const auto fifo = dir / "fifo.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const BackendChoice from_fifo = choose_backend(fifo);
+  EXPECT_FALSE(from_fifo.from_cache);
+  EXPECT_NE(from_fifo.note.find(fifo.string()), std::string::npos) << from_fifo.note;
+  EXPECT_NE(from_fifo.note.find("FIFO"), std::string::npos) << from_fifo.note;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+
+  const auto mistyped = dir / "mistyped.json";
+  std::ofstream(mistyped) << R"({"devices": {")" + device_key() +
+                                 R"(": {"backend": "compute", "fragment_spp_s": "fast", "compute_spp_s": 2}}})";
+  const BackendChoice repaired = choose_backend(mistyped);
+  EXPECT_FALSE(repaired.from_cache);
+  EXPECT_NE(repaired.note.find("mistyped"), std::string::npos) << repaired.note;
+  EXPECT_TRUE(read_json(mistyped)["devices"][device_key()]["fragment_spp_s"].is_number());
+  EXPECT_TRUE(choose_backend(mistyped).from_cache);
+
+  const auto target = dir / "precious.txt";
+  std::ofstream(target) << "not Glint's";
+  const auto link = dir / "link.json";
+  fs::create_symlink(target, link);
+  const BackendChoice through_link = choose_backend(link);
+  EXPECT_FALSE(through_link.from_cache);
+  EXPECT_NE(through_link.note.find("symbolic link"), std::string::npos) << through_link.note;
+  EXPECT_TRUE(fs::is_symlink(link));
+  std::ifstream in(target);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "not Glint's");
+}
+
 TEST(GlBackendChoice, ComputeOnlyWhenClearlyFaster) {
   EXPECT_FALSE(prefers_compute({100, 100}));
   EXPECT_FALSE(prefers_compute({100, 109}));  // within the margin: the fragment path stays
@@ -221,6 +261,11 @@ TEST(GlBackendChoice, CacheFileFollowsXdgCacheHomeThenHome) {
   EXPECT_EQ(default_backend_cache_file(), dir / "xdg" / "glint" / "backend.json");
   unsetenv("XDG_CACHE_HOME");
   EXPECT_EQ(default_backend_cache_file(), dir / "home" / ".cache" / "glint" / "backend.json");
+  // A relative XDG_CACHE_HOME is ignored, as the XDG Base Directory specification says (it
+  // would put the cache in whatever folder a render starts in).
+  setenv("XDG_CACHE_HOME", "relative/cache", 1);
+  EXPECT_EQ(default_backend_cache_file(), dir / "home" / ".cache" / "glint" / "backend.json");
+  unsetenv("XDG_CACHE_HOME");
   unsetenv("HOME");
   EXPECT_EQ(default_backend_cache_file(), std::nullopt);
   if (xdg) setenv("XDG_CACHE_HOME", xdg->c_str(), 1);

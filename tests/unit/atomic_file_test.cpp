@@ -1,10 +1,15 @@
 // Saving images and projects (write_file_atomically, atomic_file.h): a full or read-only file
-// system keeps the old file and names the OS reason, symbolic links are written through with
-// the target's mode kept, concurrent saves of one file all succeed, and a name near the file
-// system's limit still has room for its temporary file.
+// system keeps the old file and names the OS reason, symbolic links to regular files are
+// written through with the target's mode kept, devices, FIFOs, sockets and folders are never
+// replaced, concurrent saves of one file all succeed, and a name near the file system's limit
+// still has room for its temporary file. Glint's own state files (state_file.h) are never
+// written through a link and are read only when regular and small.
 #include <gtest/gtest.h>
 
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -19,6 +24,7 @@
 #include "renderer/atomic_file.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "renderer/state_file.h"
 #include "tests/small_tmpfs.h"
 #include "tests/temp_dir.h"
 
@@ -242,6 +248,131 @@ TEST(AtomicFile, WriteProblemsNameTheReason) {
   }
   // Nothing was left behind by the checks or the failed saves: folder.png and the two links.
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 3);
+}
+
+// The kinds of file that no write may replace, made in the test's folder: a FIFO, a socket, a
+// folder and, for root, a character device node (the numbers of /dev/null: harmless if written).
+struct SpecialFiles {
+  explicit SpecialFiles(const fs::path& dir) {
+    fs::create_directories(dir / "folder");
+    kinds.push_back({dir / "folder", "a folder"});
+    EXPECT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+    kinds.push_back({dir / "fifo", "a FIFO"});
+    socket_fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+    sockaddr_un address{};
+    address.sun_family = AF_UNIX;
+    const std::string name = (dir / "socket").string();
+    if (name.size() < sizeof address.sun_path) {
+      std::copy(name.begin(), name.end(), address.sun_path);
+      if (::bind(socket_fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0)
+        kinds.push_back({dir / "socket", "a socket"});
+    }
+    if (::geteuid() == 0 && ::mknod((dir / "device").c_str(), S_IFCHR | 0600, makedev(1, 3)) == 0)
+      kinds.push_back({dir / "device", "a character device"});
+  }
+  ~SpecialFiles() { ::close(socket_fd); }
+  std::vector<std::pair<fs::path, std::string>> kinds;  // path, what the refusal calls it
+  int socket_fd = -1;
+};
+
+bool still_special(const fs::path& file) {
+  struct stat st {};
+  return ::lstat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+}
+
+// A user-named output (an image, a project) that is, or links to, a device, FIFO, socket or
+// folder is refused, naming what is there; the special file stays as it was and no temporary
+// file is left. (The writer used to rename a regular file over them.)
+TEST(AtomicFile, NeverReplacesADeviceFifoSocketOrFolder) {
+  test::TempDir dir;
+  SpecialFiles special(dir.path());
+  ASSERT_GE(special.kinds.size(), 3u);
+  for (const auto& [file, kind] : special.kinds) {
+    const fs::path link = dir / ("link-to-" + file.filename().string() + ".png");
+    fs::create_symlink(file, link);
+    for (const fs::path& named : {file, link}) {
+      const auto problem = file_write_problem(named);
+      ASSERT_TRUE(problem.has_value()) << named;
+      EXPECT_NE(problem->find(kind), std::string::npos) << *problem;
+      try {
+        write_file_atomically(named, "data", 4);
+        ADD_FAILURE() << "wrote over " << kind << " through " << named;
+      } catch (const FileWriteError& e) {
+        EXPECT_NE(std::string(e.what()).find(named.string()), std::string::npos) << e.what();
+        EXPECT_NE(e.problem.find(kind), std::string::npos) << e.problem;
+      }
+      EXPECT_THROW(save_image(named, noise_image(2, 2)), ImageError);
+      EXPECT_THROW(save_project(small_scene(), named), ProjectError);
+      EXPECT_TRUE(still_special(file)) << file << " was replaced";
+    }
+  }
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    EXPECT_NE(entry.path().filename().string().rfind(".glint-", 0), 0u) << "temporary file left: " << entry.path();
+}
+
+// Glint's own files (caches, editor state, farm plans) are never written through a link: a
+// link planted at such a path, whatever it points to, is refused and its target keeps its
+// contents; so is any other non-regular file. A regular file is replaced as usual.
+TEST(AtomicFile, StateFilesAreNeverWrittenThroughALink) {
+  test::TempDir dir;
+  const fs::path precious = dir / "precious.txt";
+  std::ofstream(precious) << "not Glint's";
+  const fs::path state = dir / "backend.json";
+  fs::create_symlink(precious, state);
+  try {
+    write_state_file(state, "{}");
+    ADD_FAILURE() << "wrote through a link";
+  } catch (const FileWriteError& e) {
+    EXPECT_NE(std::string(e.what()).find(state.string()), std::string::npos) << e.what();
+    EXPECT_NE(e.problem.find("symbolic link"), std::string::npos) << e.problem;
+  }
+  EXPECT_TRUE(fs::is_symlink(state));
+  EXPECT_EQ(read_bytes(precious), "not Glint's");
+  const fs::path dangling = dir / "layout.ini";  // a link to a file that does not exist yet
+  fs::create_symlink(dir / "created-elsewhere", dangling);
+  EXPECT_THROW(write_state_file(dangling, "x"), FileWriteError);
+  EXPECT_FALSE(fs::exists(dir / "created-elsewhere"));
+
+  SpecialFiles special(dir.path());
+  for (const auto& [file, kind] : special.kinds) {
+    EXPECT_THROW(write_state_file(file, "x"), FileWriteError) << kind;
+    EXPECT_TRUE(still_special(file)) << file << " was replaced";
+  }
+  write_state_file(dir / "settings.json", "{\"a\": 1}");
+  write_state_file(dir / "settings.json", "{}");
+  EXPECT_EQ(read_bytes(dir / "settings.json"), "{}");
+}
+
+// Reading a state file never blocks or runs away: a FIFO (no writer) is refused at once, as are
+// a folder, a device and a file over the cap (sparse, so it costs no disk); an absent file is
+// nullopt. Each refusal names the file and what is there.
+TEST(StateFile, ReadsOnlyRegularFilesWithinTheCap) {
+  test::TempDir dir;
+  EXPECT_EQ(read_state_file(dir / "absent.json"), std::nullopt);
+  std::ofstream(dir / "small.json") << "{\"ok\": true}";
+  EXPECT_EQ(read_state_file(dir / "small.json"), "{\"ok\": true}");
+  SpecialFiles special(dir.path());
+  for (const auto& [file, kind] : special.kinds) {
+    if (kind == "a socket") continue;  // open(2) cannot open a socket: refused with the OS reason
+    try {
+      read_state_file(file);
+      ADD_FAILURE() << "read " << kind;
+    } catch (const StateFileError& e) {
+      EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+      EXPECT_NE(e.problem.find(kind), std::string::npos) << e.problem;
+    }
+  }
+  EXPECT_THROW(read_state_file(dir / "socket"), StateFileError);
+  const fs::path huge = dir / "huge.json";
+  std::ofstream(huge) << "";
+  fs::resize_file(huge, uintmax_t(1) << 30);
+  try {
+    read_state_file(huge);
+    ADD_FAILURE() << "read a 1 GiB state file";
+  } catch (const StateFileError& e) {
+    EXPECT_NE(e.problem.find("too large"), std::string::npos) << e.problem;
+  }
+  EXPECT_THROW(read_state_file(dir / "small.json", 4), StateFileError);
 }
 
 }  // namespace
