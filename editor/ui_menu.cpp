@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "editor/camera_control.h"
-#include "editor/material_fields.h"
+#include "renderer/material_types.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_layout.h"

@@ -2,7 +2,7 @@
 // camera), and below it the display settings, which only re-run the tonemap pass.
 #include <cstdio>
 
-#include "editor/material_fields.h"
+#include "renderer/material_types.h"
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
@@ -144,16 +144,16 @@ void quad_properties(Document& doc, EditorState& state, int i) {
 void material_properties(Document& doc, EditorState& state, int i) {
   Material& m = doc.scene.materials[i];
   name_field(doc, state, doc.selection);
-  const MaterialTypeInfo* info = material_type_info(m.type);
-  if (ImGui::BeginCombo("Type", info ? info->name : to_string(m.type))) {
+  const MaterialTypeInfo& info = material_type_info(m.type);
+  if (ImGui::BeginCombo("Type", info.name)) {
     for (const MaterialTypeInfo& t : kMaterialTypes) {
       if (ImGui::Selectable(t.name, t.type == m.type)) m.type = t.type;
       tip(t.summary);
     }
     ImGui::EndCombo();
   }
-  tip(info ? info->summary : "The material model.");
-  // Only the fields this type reads (editor/material_fields.h).
+  tip(info.summary);
+  // Only the fields this type reads (renderer/material_types.h).
   if (uses_field(m.type, kFieldColour)) {
     ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
     tip("Linear RGB colour (albedo, reflectance or tint, see Type).");

@@ -1,5 +1,7 @@
 #include "renderer/scene.h"
 
+#include "renderer/material_types.h"
+
 namespace glint {
 
 int find_material(const Scene& scene, const std::string& name) {
@@ -21,14 +23,8 @@ std::filesystem::path resolve_asset_path(const Scene& scene, const std::string& 
 }
 
 const char* to_string(MaterialType type) {
-  switch (type) {
-    case MaterialType::matte: return "matte";
-    case MaterialType::reflective: return "reflective";
-    case MaterialType::glossy: return "glossy";
-    case MaterialType::transparent: return "transparent";
-    case MaterialType::refractive: return "refractive";
-  }
-  return "matte";
+  const auto index = static_cast<size_t>(type);
+  return index < kMaterialTypeCount ? kMaterialTypes[index].name : "matte";
 }
 
 const char* to_string(Tonemap tonemap) {
@@ -36,9 +32,8 @@ const char* to_string(Tonemap tonemap) {
 }
 
 std::optional<MaterialType> material_type_from_string(const std::string& text) {
-  for (auto t : {MaterialType::matte, MaterialType::reflective, MaterialType::glossy,
-                 MaterialType::transparent, MaterialType::refractive})
-    if (text == to_string(t)) return t;
+  for (const MaterialTypeInfo& t : kMaterialTypes)
+    if (text == t.name) return t.type;
   return std::nullopt;
 }
 

@@ -13,7 +13,9 @@
 
 namespace glint {
 
+// The rows of renderer/material_types.h, in this order (their index is the shader's code).
 enum class MaterialType { matte, reflective, glossy, transparent, refractive };
+constexpr MaterialType kLastMaterialType = MaterialType::refractive;
 enum class Tonemap { filmic, linear };
 
 struct Camera {

@@ -16,6 +16,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "renderer/material_types.h"
 #include "renderer/scene.h"
 
 namespace glint {
@@ -78,9 +79,7 @@ struct EnumNames;
 template <>
 struct EnumNames<MaterialType> {
   static constexpr const char* noun = "material type";
-  static constexpr std::array values = {MaterialType::matte, MaterialType::reflective,
-                                        MaterialType::glossy, MaterialType::transparent,
-                                        MaterialType::refractive};
+  static constexpr std::array values = all_material_types();
 };
 template <>
 struct EnumNames<Tonemap> {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "renderer/image.h"
+#include "renderer/material_types.h"
 #include "renderer/loop_shapes.h"
 #include "renderer/quad_shape.h"
 
@@ -104,11 +105,7 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.env_textured, "GLINT_NO_ENV_TEXTURE");
   define(f.thin_lens, "GLINT_NO_THIN_LENS");
   define(f.has_coverage, "GLINT_NO_COVERAGE");
-  define(f.uses(MaterialType::matte), "GLINT_NO_MATTE");
-  define(f.uses(MaterialType::reflective), "GLINT_NO_REFLECTIVE");
-  define(f.uses(MaterialType::glossy), "GLINT_NO_GLOSSY");
-  define(f.uses(MaterialType::transparent), "GLINT_NO_TRANSPARENT");
-  define(f.uses(MaterialType::refractive), "GLINT_NO_REFRACTIVE");
+  for (const MaterialTypeInfo& t : kMaterialTypes) define(f.uses(t.type), t.omit_define);
   define(f.loop_traversal, "GLINT_NO_LOOP");
   define(f.bvh_traversal, "GLINT_NO_BVH");
   define(f.has_spheres, "GLINT_NO_SPHERES");

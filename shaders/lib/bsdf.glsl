@@ -6,6 +6,7 @@
 #ifndef GLINT_BSDF_GLSL
 #define GLINT_BSDF_GLSL
 
+// Each type's code is its row's index in renderer/material_types.h (unit.MaterialTypes checks).
 const int MATERIAL_MATTE = 0;
 const int MATERIAL_REFLECTIVE = 1;
 const int MATERIAL_GLOSSY = 2;
