@@ -17,6 +17,7 @@
 
 #include "app/command_line.h"
 #include "app/progress_bar.h"
+#include "app/render_size.h"
 #include "renderer/atomic_file.h"
 #include "renderer/backend_choice.h"
 #include "renderer/gl_context.h"
@@ -297,31 +298,6 @@ Image load_reference(const std::string& path, int width, int height) {
   return load_image(path, ColorEncoding::linear);
 }
 
-// The film size of the render: the project's, or the command line's (one side given: the other
-// keeps the film's aspect), within the limits of a project's film (check_film_size) so that a
-// size the GPU cannot hold is refused before anything is allocated.
-std::pair<int, int> render_size(const Options& o, const Film& film) {
-  if (!o.width && !o.height) return {film.width, film.height};  // checked by the loader
-  int64_t width = film.width, height = film.height;
-  if (o.width) width = *o.width;
-  if (o.height) height = *o.height;
-  if (o.width && !o.height)
-    height = std::max<int64_t>(1, std::llround(*o.width * double(film.height) / film.width));
-  if (o.height && !o.width)
-    width = std::max<int64_t>(1, std::llround(*o.height * double(film.width) / film.height));
-  if (const auto problem = check_film_size(width, height)) {
-    const std::string& key = problem->json_path;
-    std::string given;
-    if (o.width) given += "--width " + std::to_string(*o.width);
-    if (o.height) given += (given.empty() ? "" : " ") + ("--height " + std::to_string(*o.height));
-    throw UsageError{given + " gives a " + std::to_string(width) + "x" + std::to_string(height) +
-                     " image: " +
-                     (key == "film.width" ? "the width " : key == "film.height" ? "the height " : "") +
-                     problem->problem};
-  }
-  return {static_cast<int>(width), static_cast<int>(height)};
-}
-
 // A path with its symbolic links resolved as far as they exist (and the last one even when
 // its target does not), for comparing files that may not exist yet.
 fs::path resolved(const fs::path& path) {
@@ -416,7 +392,7 @@ int run_render_command(int argc, char** argv) {
     if (const auto problem = file_write_problem(o.output))
       throw std::runtime_error(o.output + ": " + *problem);
     Scene scene = load_project(o.project);
-    const auto [width, height] = render_size(o, scene.film);
+    const auto [width, height] = render_size(o.width, o.height, scene.film);
     if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
 
     std::optional<Image> reference;

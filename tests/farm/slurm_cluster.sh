@@ -3,7 +3,8 @@
 #   usage: slurm_cluster.sh GLINT PROJECT WORK_DIR
 # Starts munged (its own key and socket), slurmctld -D and slurmd -D as root from a temporary
 # folder (stopped by their PIDs at the end, also on failure), then:
-#  1. a 4-part farm render; its merge must match a single render of the same samples
+#  1. a 4-part farm render (in a folder named with a space, quotes and %j%a: the logs must be
+#     at the literal path); its merge must match a single render of the same samples
 #     (mean absolute relative error of glint render's --log at most 1e-5: float rounding, see
 #     tests/gl/render_parts_test.cpp);
 #  2. a second run with one part cancelled (scancel): `glint merge` must refuse the set and
@@ -125,16 +126,21 @@ wait_for_jobs() {
 # A single render of all the samples, the reference for the merge.
 "$GLINT" render "$PROJECT" --spp $SPP --width $WIDTH -o "$WORK/single.exr"
 
-# 1. A farm render in four parts.
-mkdir -p "$WORK/run1"
-"$GLINT" farm slurm "$PROJECT" --spp $SPP --parts $PARTS --width $WIDTH -o "$WORK/run1/out.exr"
+# 1. A farm render in four parts, in a folder whose name has a space, quotes and Slurm's
+# filename patterns: the logs must land at the literal path.
+RUN1="$WORK/run 1 'q\"%j%a"
+mkdir -p "$RUN1"
+"$GLINT" farm slurm "$PROJECT" --spp $SPP --parts $PARTS --width $WIDTH -o "$RUN1/out.exr"
 wait_for_jobs
-[ -f "$WORK/run1/out.exr" ] || fail "the merge job wrote no run1/out.exr"
-"$GLINT" farm status -o "$WORK/run1/out.exr" || fail "glint farm status: not every part done"
+[ -f "$RUN1/out.exr" ] || fail "the merge job wrote no run1/out.exr"
+for log in part-0 part-3 merge; do
+  [ -f "$RUN1/out.farm/logs/$log.log" ] || fail "no log $RUN1/out.farm/logs/$log.log: $(ls "$RUN1/out.farm/logs")"
+done
+"$GLINT" farm status -o "$RUN1/out.exr" || fail "glint farm status: not every part done"
 # The single render measured against the merge: its last --log row (16 spp) is the same
 # samples, so the error is float rounding only.
 "$GLINT" render "$PROJECT" --spp $SPP --width $WIDTH -o "$WORK/single-again.exr" \
-  --reference "$WORK/run1/out.exr" --log "$WORK/single-vs-merge.csv"
+  --reference "$RUN1/out.exr" --log "$WORK/single-vs-merge.csv"
 last=$(tail -n 1 "$WORK/single-vs-merge.csv")
 echo "single render against the merge (spp,seconds,gpu_seconds,relmse,relmse_trimmed,mape,mean_bias,nonfinite): $last"
 awk -F, -v spp=$SPP '$1 != spp || $6 > 1e-5 { exit 1 }' <<<"$last" ||
@@ -170,5 +176,5 @@ cat "$WORK/run2/resume.txt"
 grep -q "submitted 1 part (job [0-9]*, array 2)" "$WORK/run2/resume.txt" || fail "--resume did not resubmit exactly part 2"
 wait_for_jobs
 [ -f "$WORK/run2/out.exr" ] || fail "the resumed farm wrote no run2/out.exr"
-cmp "$WORK/run1/out.exr" "$WORK/run2/out.exr" || fail "the resumed render differs from the uninterrupted one"
+cmp "$RUN1/out.exr" "$WORK/run2/out.exr" || fail "the resumed render differs from the uninterrupted one"
 echo "PASS: the 4-part farm render matches the single render (mape $(cut -d, -f6 <<<"$last")); the cancelled part: refused by merge, completed by --resume to the same file"
