@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <new>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,7 @@
 #include "app/command_line.h"
 #include "renderer/atomic_file.h"
 #include "renderer/image.h"
+#include "renderer/part_merge.h"
 #include "renderer/render_part.h"
 
 namespace glint {
@@ -34,7 +36,10 @@ const char* const kUsage =
     "                     0 up to the largest end of any part)\n"
     "The parts must belong to one render (the same scene digest, size, seed, sampler and\n"
     "display settings) and cover their samples without gap or overlap; otherwise nothing is\n"
-    "written and every missing or overlapping range is named.\n"
+    "written and every missing or overlapping range is named. A part whose pixels are not a\n"
+    "mean of samples (NaN, infinite or negative radiance, a discarded count that is not an\n"
+    "integer from 0 to its sample count) is refused, naming the pixel and channel. The parts\n"
+    "are read one at a time: memory holds one image's sums, whatever the number of parts.\n"
     "Exit codes: 0 merged, 1 the parts do not make one render (or a file could not be read or\n"
     "written), 2 bad arguments.\n";
 
@@ -85,36 +90,30 @@ int run_merge_command(int argc, char** argv) {
   if (int code = parse_command_line("glint merge", kUsage, argc, argv, parse, o); code >= 0) return code;
   try {
     if (const auto problem = file_write_problem(o.output)) throw std::runtime_error(o.output + ": " + *problem);
-    std::vector<RenderPart> parts;
-    std::vector<PartInfo> infos;
-    std::vector<fs::path> files;
-    for (const std::string& file : o.parts) {
-      parts.push_back(load_render_part(file));
-      infos.push_back(parts.back().info);
-      files.push_back(file);
-    }
-    const std::vector<std::string> problems = merge_problems(infos, files, o.total);
-    if (!problems.empty()) {
-      std::fprintf(stderr, "glint merge: the %zu parts do not make one render; nothing written:\n", parts.size());
-      for (const std::string& p : problems) std::fprintf(stderr, "  %s\n", p.c_str());
+    const MergedParts merged = merge_part_files(std::vector<fs::path>(o.parts.begin(), o.parts.end()), o.total);
+    if (!merged.problems.empty()) {
+      std::fprintf(stderr, "glint merge: the %zu parts do not make one render; nothing written:\n", o.parts.size());
+      for (const std::string& p : merged.problems) std::fprintf(stderr, "  %s\n", p.c_str());
       return 1;
     }
-    Image merged = merge_part_images(parts);
-    int64_t total = 0;
-    for (const PartInfo& p : infos) total = std::max(total, p.range.end);
     const std::string ext = fs::path(o.output).extension().string();
-    if (ext == ".exr") {
-      PartInfo whole = infos[0];
-      whole.range = {0, total};
-      save_part_image(o.output, whole, merged);
-    } else if (ext == ".png") {
-      save_image(o.output, tonemap_image(merged, infos[0].display));
-    } else {
-      for (size_t i = 3; i < merged.pixels.size(); i += 4) merged.pixels[i] = 1.0f;
-      save_image(o.output, merged);
+    try {
+      if (ext == ".exr") {
+        save_part_image(o.output, merged.info, merged.image);
+      } else if (ext == ".png") {
+        save_image(o.output, tonemap_image(merged.image, merged.info.display));
+      } else {
+        Image opaque = merged.image;
+        for (size_t i = 3; i < opaque.pixels.size(); i += 4) opaque.pixels[i] = 1.0f;
+        save_image(o.output, opaque);
+      }
+    } catch (const std::bad_alloc&) {
+      throw std::runtime_error(o.output + ": not enough memory to encode the " + std::to_string(merged.image.width) +
+                               "x" + std::to_string(merged.image.height) + " image; nothing written");
     }
     std::fprintf(stderr, "glint merge: wrote %s (%dx%d, %zu parts, samples 0:%lld)\n", o.output.c_str(),
-                 merged.width, merged.height, parts.size(), static_cast<long long>(total));
+                 merged.image.width, merged.image.height, o.parts.size(),
+                 static_cast<long long>(merged.info.range.end));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "glint merge: %s\n", e.what());

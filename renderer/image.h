@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -98,8 +99,28 @@ struct ExrWithAttributes {
   Image image;
   ExrAttributes attributes;
 };
+// An OpenEXR file's header, read without its pixels: the data window, the channels and the
+// string attributes.
+enum class ExrPixelType { uint32, half, float32 };
+struct ExrChannel {
+  std::string name;
+  ExrPixelType type = ExrPixelType::float32;
+};
+struct ExrHeaderInfo {
+  int min_x = 0, min_y = 0;  // the data window's first pixel
+  int width = 0, height = 0;  // the data window's size (each within the reader's 16384 a side)
+  std::vector<ExrChannel> channels;
+  ExrAttributes attributes;
+};
+// Reads and parses the header alone (the start of the file; all of it only for a header longer
+// than 64 KiB). Throws ImageError naming the file.
+ExrHeaderInfo read_exr_header(const std::filesystem::path& path);
+// Called with the header of the file being read before any of its pixels is decoded: it
+// throws to refuse the file.
+using ExrHeaderCheck = std::function<void(const ExrHeaderInfo&)>;
 ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
-                                           const std::string& alpha_channel = "");
+                                           const std::string& alpha_channel = "",
+                                           const ExrHeaderCheck& before_decoding = nullptr);
 // One layer of a multi-layer OpenEXR file: channel "<name>.<letter>" for each letter of
 // `channels` takes the image's RGBA components in order (the unnamed layer "" gives plain R, G,
 // B, A, which every viewer shows). E.g. {"albedo", &a, "RGB"}, {"N", &n, "XYZ"}.

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <system_error>
 
+#include <sys/mman.h>
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -369,26 +370,69 @@ void parse_exr_header(const std::filesystem::path& path, const std::vector<unsig
                    static_cast<int>(std::clamp<long long>(h, -1, kMaxDimension + 1)));
 }
 
+// A header that parse_exr_header accepted, as image.h describes it.
+ExrHeaderInfo header_info(const EXRHeader& header) {
+  ExrHeaderInfo info;
+  info.min_x = header.data_window.min_x;
+  info.min_y = header.data_window.min_y;
+  info.width = header.data_window.max_x - header.data_window.min_x + 1;
+  info.height = header.data_window.max_y - header.data_window.min_y + 1;
+  for (int c = 0; c < header.num_channels; ++c) {
+    const int type = header.pixel_types[c];
+    info.channels.push_back({header.channels[c].name, type == TINYEXR_PIXELTYPE_HALF    ? ExrPixelType::half
+                                                      : type == TINYEXR_PIXELTYPE_FLOAT ? ExrPixelType::float32
+                                                                                        : ExrPixelType::uint32});
+  }
+  for (int i = 0; i < header.num_custom_attributes; ++i) {
+    const EXRAttribute& a = header.custom_attributes[i];
+    if (std::string(a.type) != "string" || a.size < 0) continue;
+    std::string value;
+    if (a.value) value.assign(reinterpret_cast<const char*>(a.value), static_cast<size_t>(a.size));
+    while (!value.empty() && value.back() == '\0') value.pop_back();
+    info.attributes.emplace_back(a.name, value);
+  }
+  return info;
+}
+
+// tinyexr allocates each channel's pixels with malloc and does not check the result: where the
+// memory is not there (under an address-space limit) it writes through a null pointer. The
+// same blocks are mapped, all at once, and unmapped first, so that a shortage is an error
+// naming the file. (Large blocks are what malloc maps this way too.)
+void check_decode_memory(const std::filesystem::path& path, const EXRHeader& header, int width, int height) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  std::vector<std::pair<void*, size_t>> mapped;
+  mapped.reserve(static_cast<size_t>(header.num_channels));
+  size_t total = 0;
+  bool enough = true;
+  for (int c = 0; c < header.num_channels && enough; ++c) {
+    const size_t bytes = pixels * (header.requested_pixel_types[c] == TINYEXR_PIXELTYPE_HALF ? 2 : 4);
+    total += bytes;
+    void* block = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (block == MAP_FAILED) enough = false;
+    else mapped.emplace_back(block, bytes);
+  }
+  for (const auto& [block, bytes] : mapped) munmap(block, bytes);
+  if (!enough)
+    fail(path, "not enough memory to decode its " + std::to_string(width) + "x" + std::to_string(height) +
+                   " pixels (" + std::to_string(total >> 20) + " MiB for " + std::to_string(header.num_channels) +
+                   " channels)");
+}
+
 // The unnamed layer (R, G, B, A or a grey channel) or, with `layer`, its channels layer.R/G/B
 // (or layer.X/Y/Z) and layer.A. `alpha_channel` (when given) names the channel read as alpha
 // instead of A, and is required; `attributes` (when given) receives the header's string
-// attributes.
+// attributes; `before_decoding` (when given) is called with the header first.
 Image load_exr(const std::filesystem::path& path, const std::vector<unsigned char>& bytes,
                const std::string& layer = "", const std::string& alpha_channel = "",
-               ExrAttributes* attributes = nullptr) {
+               ExrAttributes* attributes = nullptr, const ExrHeaderCheck& before_decoding = nullptr) {
   const std::string prefix = layer.empty() ? "" : layer + ".";
   ExrFile exr;
   parse_exr_header(path, bytes, exr);
   EXRHeader& header = exr.header;
-  if (attributes) {
-    for (int i = 0; i < header.num_custom_attributes; ++i) {
-      const EXRAttribute& a = header.custom_attributes[i];
-      if (std::string(a.type) != "string" || a.size < 0) continue;
-      std::string value;
-      if (a.value) value.assign(reinterpret_cast<const char*>(a.value), static_cast<size_t>(a.size));
-      while (!value.empty() && value.back() == '\0') value.pop_back();
-      attributes->emplace_back(a.name, value);
-    }
+  if (attributes || before_decoding) {
+    ExrHeaderInfo info = header_info(header);
+    if (before_decoding) before_decoding(info);
+    if (attributes) *attributes = std::move(info.attributes);
   }
   int index[4] = {-1, -1, -1, -1};  // R, G, B, A
   int luminance = -1;
@@ -454,9 +498,16 @@ Image load_exr(const std::filesystem::path& path, const std::vector<unsigned cha
   // tinyexr frees a half-decoded image itself when decoding fails, but only the channels that
   // exr.image.num_channels counts, which it sets on success: preset it so that nothing leaks.
   exr.image.num_channels = header.num_channels;
+  check_decode_memory(path, header, width, height);
   const char* err = nullptr;
-  const int ret = LoadEXRImageFromMemory(&exr.image, &header, padded.empty() ? bytes.data() : padded.data(),
-                                         bytes.size(), &err);
+  int ret = TINYEXR_ERROR_INVALID_DATA;
+  try {
+    ret = LoadEXRImageFromMemory(&exr.image, &header, padded.empty() ? bytes.data() : padded.data(), bytes.size(),
+                                 &err);
+  } catch (const std::bad_alloc&) {
+    exr.image_loaded = true;  // frees the channels it allocated
+    fail(path, "not enough memory to decode its " + std::to_string(width) + "x" + std::to_string(height) + " pixels");
+  }
   if (ret != TINYEXR_SUCCESS) fail(path, "cannot decode OpenEXR data (" + take_exr_error(err, ret) + ")");
   exr.image_loaded = true;
 
@@ -776,13 +827,32 @@ void save_image(const std::filesystem::path& path, const Image& image) {
   }
 }
 
-ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path,
-                                           const std::string& alpha_channel) {
+ExrWithAttributes load_exr_with_attributes(const std::filesystem::path& path, const std::string& alpha_channel,
+                                           const ExrHeaderCheck& before_decoding) {
   const std::vector<unsigned char> bytes = read_image_file(path);
   if (check_before_decoding(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
   ExrWithAttributes result;
-  result.image = load_exr(path, bytes, "", alpha_channel, &result.attributes);
+  result.image = load_exr(path, bytes, "", alpha_channel, &result.attributes, before_decoding);
   return result;
+}
+
+ExrHeaderInfo read_exr_header(const std::filesystem::path& path) {
+  // As probe_image: a prefix, and the whole file only when the header does not fit in it.
+  constexpr size_t kPrefix = 65536;
+  std::vector<unsigned char> bytes = read_file(path, kPrefix);
+  if (require_format(path, bytes) != Format::openexr) fail(path, "not an OpenEXR file");
+  if (bytes.size() == kPrefix) {
+    try {
+      ExrFile exr;
+      parse_exr_header(path, bytes, exr);
+      return header_info(exr.header);
+    } catch (const ImageError&) {
+      bytes = read_image_file(path);
+    }
+  }
+  ExrFile exr;
+  parse_exr_header(path, bytes, exr);
+  return header_info(exr.header);
 }
 
 void save_exr(const std::filesystem::path& path, const Image& image, const ExrAttributes& attributes,

@@ -11,6 +11,7 @@
 
 #include "renderer/gpu_renderer.h"
 #include "renderer/scene_digest.h"
+#include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
 
 namespace glint {
@@ -73,8 +74,8 @@ PartInfo info_from(const std::filesystem::path& file, const ExrAttributes& attri
   };
   PartInfo p;
   p.digest = parse_unsigned(file, kDigest, field(kDigest), UINT64_MAX, 16);
-  p.width = static_cast<int>(parse_unsigned(file, kWidth, field(kWidth), 16384));
-  p.height = static_cast<int>(parse_unsigned(file, kHeight, field(kHeight), 16384));
+  p.width = static_cast<int>(parse_unsigned(file, kWidth, field(kWidth), kMaxFilmSide));
+  p.height = static_cast<int>(parse_unsigned(file, kHeight, field(kHeight), kMaxFilmSide));
   p.seed = static_cast<uint32_t>(parse_unsigned(file, kSeed, field(kSeed), UINT32_MAX));
   const std::string& sampler = field(kSampler);
   if (sampler == "sobol") p.sampler = SamplerKind::sobol;
@@ -146,18 +147,86 @@ void save_render_part(GpuRenderer& renderer, const PartInfo& info, const std::fi
   save_part_image(file, info, renderer.read_accumulation());
 }
 
+std::string part_header_problem(const PartInfo& info, const ExrHeaderInfo& header) {
+  const std::string size = std::to_string(info.width) + "x" + std::to_string(info.height);
+  if (info.width < 1 || info.height < 1 || int64_t(info.width) * info.height > kMaxFilmPixels)
+    return "its header says " + size + ", beyond the renderer's film limits (1 to " + std::to_string(kMaxFilmSide) +
+           " pixels a side, " + std::to_string(kMaxFilmPixels) + " in all)";
+  if (header.min_x != 0 || header.min_y != 0 || header.width != info.width || header.height != info.height)
+    return "its pixels are " + std::to_string(header.width) + "x" + std::to_string(header.height) + " at (" +
+           std::to_string(header.min_x) + ", " + std::to_string(header.min_y) + ") but its header says " + size +
+           " at (0, 0)";
+  std::vector<std::string> channels;
+  bool all_float = true;
+  for (const ExrChannel& c : header.channels) {
+    channels.push_back(c.name);
+    all_float = all_float && c.type == ExrPixelType::float32;
+  }
+  std::sort(channels.begin(), channels.end());
+  if (channels != std::vector<std::string>{"A", "B", "G", "R", kDiscardedChannel} || !all_float) {
+    std::string list;
+    for (const ExrChannel& c : header.channels)
+      list += (list.empty() ? "" : ", ") + c.name.substr(0, 32) +
+              (c.type == ExrPixelType::float32 ? "" : c.type == ExrPixelType::half ? " (half)" : " (uint)");
+    if (header.channels.size() > 8) list = std::to_string(header.channels.size()) + " channels";
+    return "its channels are " + list + "; a part has A, B, G, R and " + kDiscardedChannel + ", all 32-bit float";
+  }
+  return "";
+}
+
+std::string part_pixel_problem(const RenderPart& part) {
+  const Image& image = part.image;
+  if (image.width != part.info.width || image.height != part.info.height ||
+      image.pixels.size() != size_t(image.width) * size_t(image.height) * 4)
+    return "the image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+           " but its header says " + std::to_string(part.info.width) + "x" + std::to_string(part.info.height);
+  const double samples = double(part.info.range.count());
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const float v = image.pixels[i];
+    const bool radiance = i % 4 < 3;
+    if (std::isfinite(v) && v >= 0 && (radiance || (v == std::floor(v) && v <= samples))) continue;
+    const size_t pixel = i / 4;
+    char text[256];
+    if (radiance)
+      std::snprintf(text, sizeof text, "pixel (%zu, %zu) channel %c is %.9g (radiance must be finite and not negative)",
+                    pixel % size_t(image.width), pixel / size_t(image.width), "RGB"[i % 4], double(v));
+    else
+      std::snprintf(text, sizeof text,
+                    "pixel (%zu, %zu) channel %s is %.9g (a count of discarded samples: an integer from 0 to the "
+                    "part's %lld samples)",
+                    pixel % size_t(image.width), pixel / size_t(image.width), kDiscardedChannel, double(v),
+                    static_cast<long long>(part.info.range.count()));
+    return text;
+  }
+  return "";
+}
+
 RenderPart load_render_part(const std::filesystem::path& file) {
-  ExrWithAttributes exr = load_exr_with_attributes(file, kDiscardedChannel);
-  RenderPart part{file, info_from(file, exr.attributes), std::move(exr.image)};
-  if (part.image.width != part.info.width || part.image.height != part.info.height)
-    throw PartError(file.string() + ": the image is " + std::to_string(part.image.width) + "x" +
-                    std::to_string(part.image.height) + " but its header says " +
-                    std::to_string(part.info.width) + "x" + std::to_string(part.info.height));
-  return part;
+  PartInfo info;
+  // The header is checked before tinyexr decodes (and allocates) any pixel.
+  const auto check_header = [&](const ExrHeaderInfo& header) {
+    info = info_from(file, header.attributes);
+    if (const std::string problem = part_header_problem(info, header); !problem.empty())
+      throw PartError(file.string() + ": " + problem);
+  };
+  try {
+    RenderPart part{file, {}, load_exr_with_attributes(file, kDiscardedChannel, check_header).image};
+    part.info = info;
+    if (const std::string problem = part_pixel_problem(part); !problem.empty())
+      throw PartError(file.string() + ": " + problem);
+    return part;
+  } catch (const std::bad_alloc&) {
+    const std::string size = std::to_string(info.width) + "x" + std::to_string(info.height) + " ";
+    throw PartError(file.string() + ": not enough memory to read its " + (info.width > 0 ? size : "") + "pixels");
+  }
 }
 
 PartInfo read_part_header(const std::filesystem::path& file) {
-  return load_render_part(file).info;
+  const ExrHeaderInfo header = read_exr_header(file);
+  const PartInfo info = info_from(file, header.attributes);
+  if (const std::string problem = part_header_problem(info, header); !problem.empty())
+    throw PartError(file.string() + ": " + problem);
+  return info;
 }
 
 std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
@@ -209,29 +278,6 @@ std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
     problems.push_back(files[covering].string() + " has samples up to " + std::to_string(covered) +
                        ", beyond the " + std::to_string(total) + " asked for");
   return problems;
-}
-
-Image merge_part_images(const std::vector<RenderPart>& parts) {
-  if (parts.empty()) throw std::invalid_argument("merge_part_images: no parts");
-  Image out;
-  out.width = parts[0].image.width;
-  out.height = parts[0].image.height;
-  const size_t pixels = static_cast<size_t>(out.width) * out.height;
-  out.pixels.assign(pixels * 4, 0.0f);
-  for (size_t p = 0; p < pixels; ++p) {
-    double sum[3] = {0, 0, 0}, finite = 0, discarded = 0;
-    for (const RenderPart& part : parts) {
-      const float* v = &part.image.pixels[p * 4];
-      const double n = double(part.info.range.count()) - v[3];
-      discarded += v[3];
-      if (n <= 0) continue;
-      finite += n;
-      for (int c = 0; c < 3; ++c) sum[c] += n * v[c];
-    }
-    for (int c = 0; c < 3; ++c) out.pixels[p * 4 + c] = finite > 0 ? static_cast<float>(sum[c] / finite) : 0.0f;
-    out.pixels[p * 4 + 3] = static_cast<float>(discarded);
-  }
-  return out;
 }
 
 Image tonemap_image(const Image& linear, const DisplaySettings& display) {

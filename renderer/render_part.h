@@ -39,6 +39,7 @@ struct PartInfo {
   SamplerKind sampler = SamplerKind::sobol;
   SampleRange range;
   DisplaySettings display;  // how a merge tonemaps (not in the digest: it never changes radiance)
+  bool operator==(const PartInfo&) const = default;
 };
 
 // Everything that decides a render's samples besides size, seed, sampler and range: the scene's
@@ -56,6 +57,8 @@ struct PartError : std::runtime_error {
 
 // A part as read: its pixels' rgb are the mean of its finite samples, alpha the count of the
 // samples it discarded (non-finite), so that a merge weighs each pixel by its finite samples.
+// Every rgb value is finite and not negative, every alpha an integer from 0 to the part's
+// sample count (part_pixel_problem).
 struct RenderPart {
   std::filesystem::path file;
   PartInfo info;
@@ -66,10 +69,24 @@ struct RenderPart {
 // leaves no file that a merge could take).
 void save_render_part(GpuRenderer& renderer, const PartInfo& info, const std::filesystem::path& file);
 void save_part_image(const std::filesystem::path& file, const PartInfo& info, const Image& accumulation);
-// Throws ImageError for an unreadable image, PartError for a missing or bad header field.
+// Throws ImageError for an unreadable image, PartError for a missing or bad header field, a
+// header that is not a part's (part_header_problem: checked before any pixel is decoded), an
+// impossible pixel (part_pixel_problem) or too little memory to read it.
 RenderPart load_render_part(const std::filesystem::path& file);
-// The header alone, as load_render_part reads it (for `glint farm status`).
+// The header alone, checked as load_render_part checks it, without decoding any pixel (for
+// `glint farm status`, and a merge's checks before it reads the parts one at a time).
 PartInfo read_part_header(const std::filesystem::path& file);
+
+// What makes an OpenEXR header that carries `info` not a part's, or "": a size beyond the
+// renderer's film limits (renderer/scene_validation.h: kMaxFilmSide a side, kMaxFilmPixels in
+// all), a data window other than 0,0 to width-1,height-1, channels other than A, B, G, R and
+// glint.discarded in 32-bit float.
+std::string part_header_problem(const PartInfo& info, const ExrHeaderInfo& header);
+
+// The first impossible value of a part's pixels, naming the pixel (x, y) and the channel, or
+// "": rgb NaN, infinite or negative; a discarded count (alpha) that is not an integer from 0
+// to the part's sample count; an image of another size than its header's.
+std::string part_pixel_problem(const RenderPart& part);
 
 // Why a set of parts does not merge into the render of `total` samples (0: up to the largest
 // end of any part): parts of another render (naming the file and the field that differs), and
@@ -77,11 +94,6 @@ PartInfo read_part_header(const std::filesystem::path& file);
 std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
                                         const std::vector<std::filesystem::path>& files,
                                         int64_t total = 0);
-
-// The sample-weighted mean of parts that merge_problems accepts (any order): per pixel and
-// channel, sum(finite_i * mean_i) / sum(finite_i) in double, finite_i = count_i - discarded_i;
-// alpha is the total discarded count.
-Image merge_part_images(const std::vector<RenderPart>& parts);
 
 // The display image of a linear one, exactly as the tonemap pass makes it (shaders/lib/tonemap.glsl).
 Image tonemap_image(const Image& linear, const DisplaySettings& display);

@@ -1,5 +1,5 @@
 // Sample ranges on the GPU (RenderOptions::first_sample): parts rendered separately and merged
-// (renderer/render_part.h) give the single render of all their samples, for both samplers.
+// (renderer/part_merge.h) give the single render of all their samples, for both samplers.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gl_test_support.h"
+#include "renderer/part_merge.h"
 #include "renderer/project_file.h"
 #include "renderer/render_part.h"
 
@@ -45,6 +46,8 @@ Image merged(GpuRenderer& r, const Scene& scene, SamplerKind sampler, const std:
   std::vector<RenderPart> parts;
   for (const SampleRange& range : ranges) {
     RenderPart p;
+    p.info.width = kWidth;
+    p.info.height = kHeight;
     p.info.range = range;
     p.image = render(r, scene, sampler, offset ? range : SampleRange{0, range.count()});
     parts.push_back(std::move(p));

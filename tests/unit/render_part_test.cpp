@@ -1,11 +1,16 @@
 // Render parts (renderer/render_part.h): sample ranges, the header round trip, the checks that
-// refuse a set of parts (gap, overlap, another render) and the sample-weighted mean.
+// refuse a set of parts (gap, overlap, another render) or a part (its header, its pixels) and
+// the sample-weighted mean.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "renderer/part_merge.h"
 #include "renderer/render_part.h"
+#include "tests/part_fixtures.h"
 #include "tests/temp_dir.h"
 
 namespace glint {
@@ -115,7 +120,7 @@ TEST(RenderPartFile, RoundTripsItsHeaderAndDiscardedCounts) {
 TEST(RenderPartFile, RefusesAnExrWithoutAHeader) {
   test::TempDir dir;
   save_image(dir / "plain.exr", {1, 1, {1, 1, 1, 1}});
-  EXPECT_THROW(load_render_part(dir / "plain.exr"), ImageError);  // no glint.discarded channel
+  EXPECT_THROW(load_render_part(dir / "plain.exr"), PartError);  // no glint.digest
   try {
     Image one{1, 1, {1, 1, 1, 0}};
     save_exr(dir / "no-header.exr", one, {{"glint.width", "1"}}, "glint.discarded");
@@ -124,6 +129,92 @@ TEST(RenderPartFile, RefusesAnExrWithoutAHeader) {
   } catch (const PartError& e) {
     EXPECT_NE(std::string(e.what()).find("no-header.exr: not a glint render part (no glint.digest"), std::string::npos)
         << e.what();
+  }
+}
+
+// The header alone says whether a file is a part: the data window must be the size the glint
+// fields say, and the channels A, B, G, R and glint.discarded in 32-bit float.
+TEST(RenderPartFile, RefusesAHeaderThatIsNotAPartsBeforeItsPixels) {
+  test::TempDir dir;
+  const Image two{2, 1, {0, 0, 0, 0, 0, 0, 0, 0}};
+  PartInfo wide = part(0, 4);
+  wide.width = 3;
+  save_part_image(dir / "window.exr", wide, two);
+  PartInfo huge = part(0, 4);
+  huge.width = huge.height = 16384;
+  save_part_image(dir / "huge.exr", huge, two);
+  save_exr(dir / "channels.exr", two, {{"glint.digest", "1234"}, {"glint.width", "2"}, {"glint.height", "1"},
+                                       {"glint.seed", "7"}, {"glint.sampler", "sobol"}, {"glint.samples", "0:4"},
+                                       {"glint.exposure", "0"}, {"glint.tonemap", "filmic"}});
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"window.exr", "window.exr: its pixels are 2x1 at (0, 0) but its header says 3x1 at (0, 0)"},
+      {"huge.exr", "huge.exr: its header says 16384x16384, beyond the renderer's film limits (1 to 16384 pixels a "
+                   "side, 67108864 in all)"},
+      {"channels.exr", "channels.exr: its channels are A, B, G, R; a part has A, B, G, R and glint.discarded, all "
+                       "32-bit float"}};
+  for (const auto& [name, message] : cases) {
+    for (bool header_only : {true, false}) {
+      try {
+        if (header_only) read_part_header(dir / name);
+        else load_render_part(dir / name);
+        ADD_FAILURE() << name << ": no error";
+      } catch (const PartError& e) {
+        EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
+// glint farm status reads the header alone: a part whose pixels are cut off still says which
+// samples it has (the merge refuses it when it decodes them).
+TEST(RenderPartFile, ReadsTheHeaderWithoutThePixels) {
+  test::TempDir dir;
+  Image image{64, 64, std::vector<float>(64 * 64 * 4)};
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = i % 4 == 3 ? 0.0f : float(i % 97) / 97.0f;
+  PartInfo info = part(8, 24);
+  info.width = info.height = 64;
+  save_part_image(dir / "p.exr", info, image);
+  const std::string bytes = test::file_bytes(dir / "p.exr");
+  test::write_file_bytes(dir / "p.exr", bytes.substr(0, test::exr_attribute_data(bytes, "") + 8));
+  EXPECT_EQ(read_part_header(dir / "p.exr"), info);
+  EXPECT_THROW(load_render_part(dir / "p.exr"), ImageError);
+}
+
+// Values that no mean of samples has are refused, naming the file, the pixel and the channel.
+TEST(RenderPartFile, RefusesImpossiblePixels) {
+  test::TempDir dir;
+  const float nan = std::nanf(""), inf = INFINITY;
+  struct Case {
+    int channel;
+    float value;
+    const char* message;
+  };
+  const std::vector<Case> cases = {
+      {0, nan, "pixel (2, 1) channel R is nan (radiance must be finite and not negative)"},
+      {1, inf, "pixel (2, 1) channel G is inf (radiance"},
+      {2, -0.5f, "pixel (2, 1) channel B is -0.5 (radiance"},
+      {3, -1, "pixel (2, 1) channel glint.discarded is -1 (a count of discarded samples: an integer from 0 to the "
+              "part's 16 samples)"},
+      {3, nan, "pixel (2, 1) channel glint.discarded is nan"},
+      {3, 2.5f, "pixel (2, 1) channel glint.discarded is 2.5"},
+      {3, 17, "pixel (2, 1) channel glint.discarded is 17"},
+  };
+  for (const Case& c : cases) {
+    Image image{3, 2, std::vector<float>(3 * 2 * 4, 0.25f)};
+    for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 16;  // every sample discarded: allowed
+    image.at(2, 1)[c.channel] = c.value;
+    PartInfo info = part(0, 16);
+    info.width = 3;
+    info.height = 2;
+    save_part_image(dir / "p.exr", info, image);
+    try {
+      load_render_part(dir / "p.exr");
+      ADD_FAILURE() << c.message << ": no error";
+    } catch (const PartError& e) {
+      EXPECT_NE(std::string(e.what()).find("p.exr: " + std::string(c.message)), std::string::npos) << e.what();
+    }
+    RenderPart in_memory{"memory.exr", info, image};
+    EXPECT_THROW(merge_part_images({in_memory}), PartError) << c.message;
   }
 }
 
