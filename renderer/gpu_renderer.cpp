@@ -289,15 +289,4 @@ AovImages GpuRenderer::read_aovs() const {
   return aov_pass_->read();
 }
 
-void save_render(GpuRenderer& renderer, const std::filesystem::path& file) {
-  Image image;
-  if (file.extension() == ".png") {
-    image = renderer.read_display();
-  } else {
-    image = renderer.read_accumulation();  // alpha holds the discarded-sample count
-    for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 1.0f;
-  }
-  save_image(file, image);
-}
-
 }  // namespace glint

@@ -13,11 +13,11 @@
 // A facade over the units that do the work: the film (renderer/film_buffers.h), the scene's
 // tables, textures and BVH (scene_tables.h, scene_textures.h, bvh_tables.h), the trace uniforms
 // (trace_uniforms.h), the cache of specialised programs (program_variants.h), the draws of a pass
-// (trace_draws.h) and their GPU timers (trace_timers.h).
+// (trace_draws.h) and their GPU timers (trace_timers.h). Final images are written by
+// renderer/render_output.h.
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -234,9 +234,5 @@ class GpuRenderer {
   DrawSplit draw_split_;
   bool use_bvh_ = false;
 };
-
-// Writes the render as a final image, chosen by the file's extension: .png is the tonemapped
-// display image; .hdr and .exr hold the linear radiance with alpha 1. Throws ImageError.
-void save_render(GpuRenderer& renderer, const std::filesystem::path& file);
 
 }  // namespace glint
