@@ -111,7 +111,7 @@ bool ExportJob::step(double slice_seconds) {
 void ExportJob::finish() {
   if (!settings_.denoise) {
     // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
-    save_render(*renderer_, settings_.output);
+    save_render_output(*renderer_, scene_.display, settings_.output, {});
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state_ = State::done;
     return;

@@ -9,26 +9,36 @@
 // shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md),
 // and beside it each pixel's variance (two more), from which estimate_error() tells the
 // image's expected error without a reference (renderer/error_estimate.h).
+//
+// A facade over the units that do the work: the film (renderer/film_buffers.h), the scene's
+// tables, textures and BVH (scene_tables.h, scene_textures.h, bvh_tables.h), the trace uniforms
+// (trace_uniforms.h), the cache of specialised programs (program_variants.h), the draws of a pass
+// (trace_draws.h) and their GPU timers (trace_timers.h). Final images are written by
+// renderer/render_output.h.
 #pragma once
 
 #include <cstdint>
-#include <filesystem>
-#include <list>
 #include <memory>
 #include <string>
 
 #include <epoxy/gl.h>
 
 #include "renderer/aov_pass.h"
-#include "renderer/bvh.h"
+#include "renderer/bvh_tables.h"
 #include "renderer/error_estimate.h"
-#include "renderer/gpu_scene.h"
+#include "renderer/film_buffers.h"
 #include "renderer/image.h"
+#include "renderer/program_variants.h"
 #include "renderer/render_options.h"
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
+#include "renderer/scene_tables.h"
+#include "renderer/scene_textures.h"
 #include "renderer/shader_features.h"
 #include "renderer/trace_backend.h"
+#include "renderer/trace_draws.h"
+#include "renderer/trace_timers.h"
+#include "renderer/trace_uniforms.h"
 
 namespace glint {
 
@@ -65,9 +75,8 @@ struct GpuRendererOptions {
 
 class GpuRenderer {
  public:
-  // Texels per row of the colour textures that hold the textures' texels (TEXEL_ROW_SHIFT in
-  // shaders/trace_common.glsl).
-  static constexpr int kTexelRowWidth = 16384;
+  // Texels per row of the colour textures that hold the textures' texels (scene_textures.h).
+  static constexpr int kTexelRowWidth = glint::kTexelRowWidth;
   // Compiles the generic trace program and the tonemap program; throws std::runtime_error
   // with the driver's log. Programs specialised to a scene's ShaderFeatures are compiled
   // later, when a scene needs them (see trace()).
@@ -114,7 +123,7 @@ class GpuRenderer {
   int trace_rows(int rows);
   bool pass_under_way() const { return pass_.samples > 0; }
   int pass_samples() const { return pass_.samples; }  // per pixel, of the pass under way
-  int pass_rows_left() const { return pass_under_way() ? height_ - pass_.next_row : 0; }
+  int pass_rows_left() const { return pass_under_way() ? film_.height() - pass_.next_row : 0; }
 
   // For batch renders (`glint render`): compiles the program specialised to the synced scene
   // now, waiting for it, so that no pass is spent on the generic one, and draws one pixel with
@@ -144,22 +153,16 @@ class GpuRenderer {
   double trace_gpu_seconds();
   // One sample of the synced scene may run more loop iterations than Mesa's llvmpipe allows
   // a shader invocation (renderer/loop_budget.h): on llvmpipe its image would be wrong.
-  bool exceeds_llvmpipe_loop_limit() const { return exceeds_loop_limit_; }
+  bool exceeds_llvmpipe_loop_limit() const { return draw_split_.exceeds_loop_limit; }
   // Whether closest hits of the synced scene are found with the BVH (use_bvh in bvh.h), and the
   // hierarchy's last update: a full build, or a refit when only shapes moved (an editor drag).
   bool uses_bvh() const { return use_bvh_; }
-  struct BvhStats {
-    size_t nodes = 0;
-    int depth = 0;
-    bool refit = false;     // the last update refitted the previous tree
-    double seconds = 0;     // CPU time of the last build or refit
-    int max_steps = 0;      // the traversal's step cap (loop_budget.h)
-  };
-  const BvhStats& bvh_stats() const { return bvh_stats_; }
+  using BvhStats = glint::BvhStats;
+  const BvhStats& bvh_stats() const { return bvh_.stats(); }
   TraceBackend backend() const { return renderer_options_.backend; }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  GLuint display_texture() const { return display_texture_; }
+  int width() const { return film_.width(); }
+  int height() const { return film_.height(); }
+  GLuint display_texture() const { return film_.display_texture(); }
 
   // Mean linear radiance per pixel (rgb) and the count of discarded non-finite samples (a).
   Image read_accumulation() const;
@@ -177,97 +180,38 @@ class GpuRenderer {
   Image read_display();
 
  private:
-  void resize(int width, int height);
-  template <typename T>
-  void check_table_size(const std::string& what, const std::vector<T>& data) const;
-  template <typename T>
-  void upload_table(int k, const std::vector<T>& data);
-  void upload_geometry(const PackedScene& packed);
-  void update_bvh(const PackedScene& packed, const glm::vec3& camera);
-  void upload_textures(const Scene& scene, const std::vector<TextureLayer>& layers);
-  void upload_environment(const Scene& scene);
-  void set_frame_uniforms(const Scene& scene);
-  TraceTargets targets(int i) const {
-    return {accumulation_[i], compensation_[i], variance_[i], variance_compensation_[i]};
+  // sync()'s parts: the uploads of what changed (images first), then the features.
+  void upload_changes(const Scene& scene, const SceneDigests& d);
+  void update_features(const Scene& scene, const SceneDigests& d, bool geometry_changed);
+  void reset_accumulation();
+  TraceBindings bindings() const {
+    return {uniforms_, tables_, textures_, film_, vao_, renderer_options_.backend, renderer_options_.work_group};
   }
-  struct TraceUniforms;
-  static void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u);
-  std::shared_ptr<ProgramJob> submit_variant_job(const std::string& defines);
+  AdaptiveUniforms adaptive_uniforms() const {
+    return {options_.adaptive, adaptive_threshold_, options_.adaptive_min_samples, options_.adaptive_every};
+  }
+  std::unique_ptr<ProgramBuild> start_variant_build(const std::string& defines);
   std::string variant_defines() const;  // the cache key of the synced scene's variant
   GlProgram& choose_trace_program();
   void start_variant_if_missing();
-  void collect_trace_timers(bool wait);
-  GlProgram& bind_trace_pass(GlProgram& p, int samples, int64_t samples_before, int64_t pass_index,
-                             int source);
   void warm_up_trace_program();
-  void trace_aov_pass(int samples, int64_t samples_before, int first_row, int rows);
-
-  // A specialised trace program, compiled or still compiling.
-  struct Variant {
-    ShaderFeatures features;
-    std::string defines;  // the cache key
-    std::unique_ptr<GlProgram> program;
-    std::shared_ptr<ProgramJob> job;  // while the worker builds it
-    bool ready = false;
-    bool failed = false;  // compile or link error: the generic program is used instead
-  };
-  static constexpr size_t kMaxVariants = 4;
-  // Marks v ready or failed once its build has finished; never waits.
-  static void poll_variant(Variant& v);
 
   GpuRendererOptions renderer_options_;
   std::unique_ptr<GlProgram> trace_program_;  // the generic one
-  std::list<Variant> variants_;               // most recently used first (LRU)
+  ProgramVariants variants_;
   ShaderFeatures features_;
   std::string last_pass_defines_;
-  // Uniforms of the trace pass, applied to whichever program runs it.
-  struct TraceUniforms {
-    glm::vec3 env_color{0};
-    int env_textured = 0;
-    float env_rotation = 0;
-    int max_bounces = 0;
-    int light_count = 0;
-    float env_select = 0;
-    glm::ivec2 env_distribution_size{1, 1};
-    int russian_roulette = 0;
-    float clamp = 0;
-    int restart_together = 0;
-    int sobol = 0;
-    unsigned seed = 0;
-    unsigned first_sample = 0;
-    int sphere_count = 0;
-    int quad_count = 0;
-    int use_bvh = 0;
-    int bvh_max_steps = 0;
-    glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};
-    float cam_tan_half_vfov = 0, cam_aspect = 1, cam_aperture = 0, cam_focus = 1;
-  };
   TraceUniforms uniforms_;
-  std::unique_ptr<GlProgram> tonemap_program_;
+  FilmBuffers film_;
+  std::unique_ptr<ErrorEstimator> estimator_;
   std::unique_ptr<AovPass> aov_pass_;  // while AOVs are enabled
   GLuint vao_ = 0;
-  // Fragment path: a ping-pong pair of each; compute path: [0] only, written in place.
-  GLuint accumulation_[2] = {0, 0};
-  GLuint compensation_[2] = {0, 0};      // what each accumulation's float32 mean could not hold
-  GLuint variance_[2] = {0, 0};          // mean squared deviation of each pixel's samples
-  GLuint variance_compensation_[2] = {0, 0};
-  GLuint accumulation_fbo_[2] = {0, 0};  // each draws into the four targets of side i
-  GLuint display_texture_ = 0;
-  GLuint display_fbo_ = 0;
-  // The scene's tables, read by the trace shader from integer buffer textures (upload_table):
-  // spheres, quads, materials, texture layer records, lights, environment-sampling tables, BVH
-  // nodes, BVH primitives; table k on texture unit kTableUnit + k (shaders/trace_common.glsl).
-  static constexpr int kTables = 8;
-  static constexpr GLuint kTableUnit = 7;
-  GLuint table_textures_[kTables] = {};
-  GLuint table_buffers_[kTables] = {};  // their storage
-  // The first shapes again, as the uniform block of an unrolled loop reads them (loop_shapes.h).
-  GLuint loop_shapes_buffer_ = 0;
-  // The texels of the textures in use (see upload_textures): [0] RGBA8, [1] RGBA32F.
-  GLuint texel_textures_[2] = {0, 0};
-  GLuint environment_texture_ = 0;
+  bool llvmpipe_ = false;  // the context is Mesa's llvmpipe (its loop limit applies)
+  SceneTables tables_;
+  SceneTextures textures_;
+  BvhTables bvh_;
+  TraceTimers timers_;
 
-  int current_ = 0;  // accumulation_[current_] holds the latest result (always 0 for compute)
   // The pass begun by begin_pass (trace() is one of them, traced in one band).
   struct Pass {
     int samples = 0;    // per pixel; 0: none under way
@@ -275,39 +219,20 @@ class GpuRenderer {
     GlProgram* program = nullptr;  // the generic one or a variant's, never evicted meanwhile
   };
   Pass pass_;
-  int width_ = 0;
-  int height_ = 0;
   int64_t samples_ = 0;
   int64_t passes_ = 0;             // draws since the reset (adaptive sampling's pass index)
   float adaptive_threshold_ = 0;   // the image's mean error per sample at the last estimate
   int64_t threshold_samples_ = 0;  // sample_count() when adaptive_threshold_ was taken
-  std::unique_ptr<ErrorEstimator> estimator_;
   ErrorEstimate estimate_;
   int64_t estimate_samples_ = -1;  // sample_count() when estimate_ was taken
-  bool display_stale_ = true;
   bool first_sync_ = true;
   SceneDigests digests_;
   RenderOptions options_;
-  glm::dvec3 origin_{0};  // render_origin of the packed scene
   RenderOptions synced_options_;
-  int light_count_ = 0;
-  long shape_count_ = 0;
-  int samples_per_draw_ = 1;  // samples one draw adds per pixel (loop_budget.h)
-  bool exceeds_loop_limit_ = false;
+  glm::dvec3 origin_{0};  // render_origin of the packed scene
+  GeometryCounts counts_;
+  DrawSplit draw_split_;
   bool use_bvh_ = false;
-  bool llvmpipe_ = false;   // the context is Mesa's llvmpipe (its loop limit applies)
-  Bvh bvh_;                 // of the uploaded geometry when bvh_valid_
-  bool bvh_valid_ = false;
-  float bvh_extent_ = 0;    // the ray extent its boxes are padded for
-  double bvh_built_cost_ = 0;  // SAH cost after the last full build
-  BvhStats bvh_stats_;
-  std::vector<TextureLayer> layers_;  // what the texel buffers hold, layer by layer
-  std::vector<GLuint> trace_timers_;  // timestamp pairs of trace passes not yet read, oldest first
-  double trace_gpu_seconds_ = 0;
 };
-
-// Writes the render as a final image, chosen by the file's extension: .png is the tonemapped
-// display image; .hdr and .exr hold the linear radiance with alpha 1. Throws ImageError.
-void save_render(GpuRenderer& renderer, const std::filesystem::path& file);
 
 }  // namespace glint

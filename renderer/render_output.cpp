@@ -98,11 +98,9 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
 RenderOutputReport save_render_output(GpuRenderer& renderer, const DisplaySettings& display,
                                       const std::filesystem::path& file,
                                       const RenderOutputOptions& options, Denoiser* denoiser) {
-  if (!options.denoise && !(options.aovs && file.extension() == ".exr")) {
-    save_render(renderer, file);
-    return {};
-  }
-  return save_render_images(read_render_images(renderer), display, file, options, denoiser);
+  RenderImages images{render_colour(renderer), {}};
+  if (options.aovs || options.denoise) images.aovs = renderer.read_aovs();
+  return save_render_images(images, display, file, options, denoiser);
 }
 
 }  // namespace glint

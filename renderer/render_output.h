@@ -1,7 +1,8 @@
 // Writing a finished render with the optional denoised colour and auxiliary images (docs/
-// DESIGN.md, Denoising), for `glint render` and the editor's export alike. By the file's
-// extension: .png the tonemapped image, .hdr the linear radiance, .exr float32 layers.
-// Denoising is BIASED (renderer/denoiser.h): the caller labels it so.
+// DESIGN.md, Denoising): the one writer of final images, for `glint render` and the editor's
+// export alike. By the file's extension: .png the tonemapped image (tonemapped() below, on the
+// CPU), .hdr the linear radiance, .exr float32 layers; alpha is 1. Denoising is BIASED
+// (renderer/denoiser.h): the caller labels it so.
 #pragma once
 
 #include <filesystem>
@@ -38,8 +39,10 @@ struct RenderOutputReport {
 // The render's linear colour with alpha 1 (the accumulation's alpha holds the discarded count).
 Image render_colour(const GpuRenderer& renderer);
 
-// The display image of a linear one, as the GPU's tonemap pass computes it (shaders/lib/
-// tonemap.glsl, here compiled as C++): for a denoised PNG.
+// The display image of a linear one, by the formula of the GPU's tonemap pass (shaders/lib/
+// tonemap.glsl, here compiled as C++), alpha 1: what a PNG holds. The GPU's own display image
+// may differ from it by one 8-bit level where the driver rounds differently (docs/DESIGN.md
+// §8, Outputs).
 Image tonemapped(const Image& linear, const DisplaySettings& display);
 
 // What a finished render writes, read back from the GPU (on the GL thread).
@@ -57,7 +60,8 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
                                       const std::filesystem::path& file,
                                       const RenderOutputOptions& options, Denoiser* denoiser = nullptr);
 
-// The same straight from the renderer; without denoising or layers exactly save_render.
+// The same straight from the renderer (on the GL thread), reading back the AOVs only when the
+// options need them.
 RenderOutputReport save_render_output(GpuRenderer& renderer, const DisplaySettings& display,
                                       const std::filesystem::path& file,
                                       const RenderOutputOptions& options,
