@@ -57,18 +57,6 @@ std::string write_all(int fd, const unsigned char* data, size_t size) {
   return "";
 }
 
-// "a FIFO" for a file that is not a regular file (from lstat or stat), "" for a regular one.
-std::string non_regular_kind(mode_t mode) {
-  if (S_ISREG(mode)) return "";
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 // Why `target` (the end of the link chain from `file`) must not be replaced, or "": it exists
 // and is not a regular file.
 std::string target_problem(const fs::path& file, const fs::path& target) {
@@ -84,6 +72,17 @@ std::string target_problem(const fs::path& file, const fs::path& target) {
 void replace_file(const fs::path& file, const fs::path& target, const void* data, size_t size);
 
 }  // namespace
+
+std::string non_regular_kind(unsigned mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 FileWriteError::FileWriteError(const fs::path& file, std::string problem_)
     : std::runtime_error(file.string() + ": " + problem_), problem(std::move(problem_)) {}

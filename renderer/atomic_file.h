@@ -46,6 +46,10 @@ void write_state_file_atomically(const std::filesystem::path& file, const void* 
 // commands that should fail before spending minutes on a render.
 std::optional<std::string> file_write_problem(const std::filesystem::path& file);
 
+// What a file of this st_mode is, for messages: "a FIFO", "a character device", "a folder",
+// "a symbolic link" (from lstat)...; "" for a regular file.
+std::string non_regular_kind(unsigned mode);
+
 // The file that writing `file` replaces: `file` itself, or the final target of the chain of
 // symbolic links it names (which need not exist yet). Throws FileWriteError for a loop.
 std::filesystem::path write_target(const std::filesystem::path& file);

@@ -18,15 +18,6 @@ StateFileError::StateFileError(const fs::path& file, std::string problem_)
 
 namespace {
 
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 std::string too_large(size_t size, size_t max_bytes) {
   return "is too large for a Glint state file (" + std::to_string(size) + " bytes, the limit is " +
          std::to_string(max_bytes) + ")";
@@ -50,7 +41,7 @@ std::optional<std::string> read_state_file(const fs::path& file, size_t max_byte
   }
   struct stat st {};
   if (::fstat(d.fd, &st) != 0) throw StateFileError(file, std::string("cannot read: ") + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw StateFileError(file, "is " + kind_of(st.st_mode) + ", not a regular file");
+  if (!S_ISREG(st.st_mode)) throw StateFileError(file, "is " + non_regular_kind(st.st_mode) + ", not a regular file");
   if (static_cast<uintmax_t>(st.st_size) > max_bytes) throw StateFileError(file, too_large(size_t(st.st_size), max_bytes));
   std::string text;
   char buffer[65536];
