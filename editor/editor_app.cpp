@@ -111,6 +111,14 @@ float window_content_scale(GLFWwindow* window) {
   return xscale;
 }
 
+// A problem with the editor's own files (settings, layout, recent files, recovery): on stderr
+// and in the status line. Nothing when `note` is empty.
+void report_note(EditorState& state, const std::string& note) {
+  if (note.empty()) return;
+  std::fprintf(stderr, "glint: %s\n", note.c_str());
+  show_note(state, note);
+}
+
 // The layout comes from the user's config folder, except in screenshot runs, which show the
 // default layout and leave the user's state alone.
 void start_imgui(GLFWwindow* window, EditorState& state, const fs::path& layout_file) {
@@ -120,7 +128,7 @@ void start_imgui(GLFWwindow* window, EditorState& state, const fs::path& layout_
   if (!layout_file.empty()) {
     std::string error;
     load_layout(layout_file, error);
-    if (!error.empty()) std::fprintf(stderr, "glint: %s\n", error.c_str());
+    report_note(state, error);
   }
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 450");
@@ -132,11 +140,15 @@ void follow_content_scale(GLFWwindow* window, EditorState& state) {
   state.content_scale = content_scale();
 }
 
-void save_layout(const fs::path& layout_file, bool force) {
+// `last_error`: the last save's problem, reported again only when it changes (ImGui asks to
+// save every few seconds while windows move).
+void save_layout(EditorState& state, const fs::path& layout_file, bool force, std::string& last_error) {
   if (layout_file.empty()) return;
   std::string error;
-  if (!save_layout_if_needed(layout_file, force, error) && !error.empty())
-    std::fprintf(stderr, "glint: cannot save the window layout: %s\n", error.c_str());
+  if (save_layout_if_needed(layout_file, force, error)) last_error.clear();
+  if (error.empty() || error == last_error) return;
+  last_error = error;
+  report_note(state, error);
 }
 
 void stop_imgui() {
@@ -146,20 +158,33 @@ void stop_imgui() {
 }
 
 // The state at start: file dialogs, recent files, the examples folder, the command line's
-// project, and (except in screenshot runs, which leave the user's state alone) the recovery a
-// crashed run left, offered by draw_recovery_offer, and this run's autosave. Returns false when
-// a screenshot run's project does not open.
+// project, and (except in screenshot runs, which leave the user's state alone) the recoveries
+// that sessions which did not exit cleanly left, offered by draw_recovery_offer, and this run's
+// autosave. Problems with the editor's own files are notes. Returns false when a screenshot
+// run's project does not open.
 bool start_session(Document& doc, EditorState& state, const EditorOptions& options, GLFWwindow* worker_window) {
   const bool screenshot_mode = !options.screenshot.empty();
   bool ok = true;
   state.flow.native_dialogs = native_file_dialogs_available();
-  state.flow.recent_files = load_recent_files();
-  state.flow.on_opened_or_saved = [&state](const fs::path& f) { state.flow.recent_files = add_recent_file(f); };
+  std::string note;
+  state.flow.recent_files = load_recent_files(note);
+  report_note(state, note);
+  state.flow.on_opened_or_saved = [&state](const fs::path& f) {
+    std::string problem;
+    state.flow.recent_files = add_recent_file(f, problem);
+    report_note(state, problem);
+  };
   state.flow.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
   // The user's settings (preview mode, export folder); screenshot runs read but never write them.
-  state.settings = load_editor_settings();
+  state.settings = load_editor_settings(note);
+  report_note(state, note);
   state.viewport.resolution = state.settings.preview;
-  if (!screenshot_mode) state.on_settings_changed = [](const EditorSettings& s) { save_editor_settings(s); };
+  if (!screenshot_mode)
+    state.on_settings_changed = [&state](const EditorSettings& s) {
+      std::string problem;
+      save_editor_settings(s, problem);
+      report_note(state, problem);
+    };
   if (!options.project.empty() && !open_document(doc, state, options.project)) {
     std::fprintf(stderr, "glint: %s\n", state.messages.error.c_str());
     if (screenshot_mode) ok = false;
@@ -173,10 +198,12 @@ bool start_session(Document& doc, EditorState& state, const EditorOptions& optio
     }
   }
   if (!screenshot_mode) {
-    state.recovery = find_recovery();
-    if (state.recovery)
+    std::vector<std::string> notes;
+    state.recoveries = find_recoveries(notes);
+    for (const std::string& n : notes) report_note(state, n);
+    for (const Recovery& r : state.recoveries)
       std::fprintf(stderr, "glint: offering the unsaved work of a run that did not exit cleanly (%s)\n",
-                   state.recovery->file.string().c_str());
+                   r.file.string().c_str());
     state.autosave.emplace(fs::path(), 30);
   }
   if (worker_window)
@@ -384,7 +411,7 @@ int run_editor(const EditorOptions& options) {
     if (!viewport) exit_code = 1;
 
     int frame = 0;
-    std::string title;
+    std::string title, layout_error;
     while (exit_code == 0 && !state.flow.quit_approved) {
       int fb_w = 0, fb_h = 0;
       const Poll poll = poll_window(windows->main, doc, state, screenshot_mode, fb_w, fb_h);
@@ -405,11 +432,11 @@ int run_editor(const EditorOptions& options) {
       glfwSwapBuffers(windows->main);
       update_title(windows->main, doc, title);
       if (state.autosave) state.autosave->update(doc, glfwGetTime());
-      save_layout(layout_file, false);
+      save_layout(state, layout_file, false, layout_error);
       if (!screenshot_mode && options.frames && frame >= options.frames) break;
     }
     end_session(state, viewport);
-    save_layout(layout_file, true);
+    save_layout(state, layout_file, true, layout_error);
     stop_imgui();
   }
   close_windows(*windows);

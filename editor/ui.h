@@ -114,6 +114,10 @@ struct Messages {
   std::string error;
   bool open_error = false;
   bool error_enter_released = false;  // Enter closes the error box only after a release in it
+  // A problem with the editor's own files (settings, layout, recent files, recovery): the
+  // defaults were used or a file was not written. Shown beside the transient message.
+  std::string note;
+  double note_until = 0;
 };
 
 // The export dialog and the job it started.
@@ -153,9 +157,10 @@ struct EditorState {
   EditorSettings settings;
   std::function<void(const EditorSettings&)> on_settings_changed;
 
-  // Crash recovery: the work a crashed run left, offered once the panels exist (reset when
-  // answered), and this run's autosave (none in tests and screenshot runs).
-  std::optional<Recovery> recovery;
+  // Crash recovery: the work that sessions which did not exit cleanly left, offered one after
+  // the other once the panels exist (each removed when answered), and this run's autosave
+  // (none in tests and screenshot runs).
+  std::vector<Recovery> recoveries;
   std::optional<Autosave> autosave;
 
   // Builds specialised trace programs off the UI thread for the viewport and exports (null:
@@ -201,7 +206,8 @@ std::string export_eta(double progress, double elapsed_seconds);
 void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
 
 // The status bar's line, piece by piece: the frame figures, then an autosave failure (shown
-// until an autosave succeeds), then the transient message or the export's progress.
+// until an autosave succeeds), a note about the editor's own files, then the transient message
+// or the export's progress.
 struct StatusPiece {
   std::string text;
   ImVec4 color;
@@ -234,6 +240,9 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
 std::string file_dialog_start(const Document& doc, const EditorState& state, FilePurpose purpose);
 void show_error(EditorState& state, const std::string& message);
 void show_message(EditorState& state, const std::string& message);
+// A problem with the editor's own files (Messages::note) in the status line for 10 s; notes
+// that come while one shows are joined to it.
+void show_note(EditorState& state, const std::string& note);
 
 // The example project of key 1-4 (empty if projects_dir is unknown).
 std::filesystem::path example_project(const EditorState& state, int number);

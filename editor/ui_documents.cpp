@@ -77,6 +77,13 @@ void show_message(EditorState& state, const std::string& message) {
   state.messages.message_until = ImGui::GetTime() + 4.0;
 }
 
+void show_note(EditorState& state, const std::string& note) {
+  const double now = ImGui::GetTime();
+  if (!state.messages.note.empty() && now < state.messages.note_until) state.messages.note += "; " + note;
+  else state.messages.note = note;
+  state.messages.note_until = now + 10.0;
+}
+
 void request_action(Document& doc, EditorState& state, DocAction action, fs::path path) {
   if (doc.dirty()) {
     state.flow.pending = action;

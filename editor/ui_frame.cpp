@@ -29,6 +29,8 @@ std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
   std::vector<StatusPiece> pieces{{text, ImGui::GetStyleColorVec4(ImGuiCol_Text)}};
   if (state.autosave && !state.autosave->last_error().empty())
     pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1)});
+  if (!state.messages.note.empty() && now_s < state.messages.note_until)
+    pieces.push_back({"  |  " + state.messages.note, ImVec4(1, 0.6f, 0.3f, 1)});
   if (!state.messages.message.empty() && now_s < state.messages.message_until) {
     pieces.push_back({"  |  " + state.messages.message, ImVec4(1, 0.85f, 0.4f, 1)});
   } else if (export_running(state)) {

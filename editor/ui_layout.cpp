@@ -1,13 +1,13 @@
 #include "editor/ui_layout.h"
 
 #include <algorithm>
-#include <fstream>
-#include <sstream>
+#include <optional>
 
 #include <imgui_internal.h>  // DockBuilder*: the docking branch's layout API
 
 #include "editor/recent_and_recovery.h"
 #include "renderer/atomic_file.h"
+#include "renderer/state_file.h"
 
 namespace glint {
 namespace fs = std::filesystem;
@@ -59,17 +59,15 @@ void reset_layout() {
 }
 
 void load_layout(const fs::path& file, std::string& error) {
-  std::error_code ec;
-  if (!fs::exists(file, ec)) return;
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) {
-    error = file.string() + ": cannot read the saved window layout; using the default layout";
+  error.clear();
+  std::optional<std::string> text;
+  try {
+    text = read_state_file(file);
+  } catch (const StateFileError& e) {
+    error = std::string(e.what()) + "; using the default layout";
     return;
   }
-  const std::string s = text.str();
-  ImGui::LoadIniSettingsFromMemory(s.data(), s.size());
+  if (text) ImGui::LoadIniSettingsFromMemory(text->data(), text->size());
 }
 
 bool save_layout_if_needed(const fs::path& file, bool force, std::string& error) {
@@ -85,7 +83,7 @@ bool save_layout_if_needed(const fs::path& file, bool force, std::string& error)
     error.clear();
     return true;
   } catch (const std::exception& e) {
-    error = e.what();
+    error = std::string(e.what()) + "; the window layout is not saved";
     return false;
   }
 }

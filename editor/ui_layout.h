@@ -33,10 +33,13 @@ ImGuiID dock_panels(float content_scale);
 void reset_layout();
 
 // Loads a saved layout into the current context (call before the first frame). A missing file
-// is no error; an unreadable one is reported in `error` and the default layout is used.
+// is no error; one that cannot be read (read_state_file: a FIFO, a folder, a file over the
+// cap) is reported in `error` and the default layout is used.
 void load_layout(const std::filesystem::path& file, std::string& error);
-// Writes the layout when ImGui asks (io.WantSaveIniSettings) or when `force`; best effort: an
-// error (a read-only home) goes to `error` and never stops the editor. Returns true when written.
+// Writes the layout when ImGui asks (io.WantSaveIniSettings) or when `force`, with
+// write_state_file_atomically (a link at the path is refused, never written through); best
+// effort: an error (a read-only home, a link) goes to `error` and never stops the editor.
+// Returns true when written.
 bool save_layout_if_needed(const std::filesystem::path& file, bool force, std::string& error);
 
 }  // namespace glint

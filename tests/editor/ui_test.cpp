@@ -2,6 +2,7 @@
 // gizmo, undo, files, the status line, and usability.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -318,34 +319,49 @@ TEST_F(UiTest, ExportFromTheEditorRunsInSlices) {
   EXPECT_TRUE(fs::exists(dir / "shot.png"));
 }
 
+// A session that autosaved `doc` and ended without a clean exit (its lock goes, its files stay).
+fs::path crashed_session(const Document& doc, const fs::path& dir) {
+  Autosave autosave(dir, 0);
+  EXPECT_TRUE(autosave.update(doc, 1)) << autosave.last_error();
+  return autosave.file();
+}
+
+std::vector<Recovery> offered(const fs::path& dir) {
+  std::vector<std::string> notes;
+  std::vector<Recovery> found = find_recoveries(notes, dir);
+  EXPECT_TRUE(notes.empty()) << notes.front();
+  return found;
+}
+
 // The editor's start while a crashed run's recovery exists, as run_editor does it: a fresh
 // context, the command line's project, the offer set before the first frame. The offer must
 // open (after the panels: opened before them, Dear ImGui 1.86 aborts) and Recover must make the
-// recovered work the open, unsaved document and delete the recovery file.
+// recovered work the open, unsaved document and delete the recovery files.
 TEST_F(UiTest, RecoveryOfferAtStartRecovers) {
   test::TempDir dir;
   const fs::path project = kProjects / "default.glint";
   Document crashed(load_project(project), project);
   crashed.scene.spheres[0].radius = 0.123f;
-  write_recovery(crashed, dir.path());
+  const fs::path file = crashed_session(crashed, dir.path());
 
   state_.thumbnails.clear();
   ImGui::DestroyContext();
   start_imgui();
   ASSERT_TRUE(open_document(doc_, state_, project));
-  state_.recovery = find_recovery(dir.path());
-  ASSERT_TRUE(state_.recovery);
+  state_.recoveries = offered(dir.path());
+  ASSERT_EQ(state_.recoveries.size(), 1u);
   for (int i = 0; i < 4; ++i) frame();
   EXPECT_TRUE(recovery_offer_open_);
   EXPECT_FALSE(doc_.dirty());
   click(popup_button("Recover unsaved work?", 0, 110));
   frame();
   EXPECT_FALSE(recovery_offer_open_);
-  EXPECT_FALSE(state_.recovery);
+  EXPECT_TRUE(state_.recoveries.empty());
   EXPECT_EQ(doc_.path(), project);
   EXPECT_TRUE(doc_.dirty());
   EXPECT_FLOAT_EQ(doc_.scene.spheres[0].radius, 0.123f);
-  EXPECT_FALSE(fs::exists(recovery_file_path(dir.path())));
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_TRUE(fs::is_empty(dir.path()));  // sidecar and lock file too
   EXPECT_TRUE(doc_.can_undo());  // back to the file as saved
 }
 
@@ -355,11 +371,11 @@ TEST_F(UiTest, RecoveryOfferWaitsForTheErrorBoxAndDiscards) {
   test::TempDir dir;
   Document crashed;
   add_sphere(crashed.scene);
-  write_recovery(crashed, dir.path());
+  crashed_session(crashed, dir.path());
   const Scene before = doc_.scene;
   show_error(state_, "some error");
-  state_.recovery = find_recovery(dir.path());
-  ASSERT_TRUE(state_.recovery);
+  state_.recoveries = offered(dir.path());
+  ASSERT_EQ(state_.recoveries.size(), 1u);
   for (int i = 0; i < 3; ++i) frame();
   EXPECT_TRUE(error_open_);
   EXPECT_FALSE(recovery_offer_open_);
@@ -370,11 +386,47 @@ TEST_F(UiTest, RecoveryOfferWaitsForTheErrorBoxAndDiscards) {
   click(popup_button("Recover unsaved work?", 1, 110));
   frame();
   EXPECT_FALSE(recovery_offer_open_);
-  EXPECT_FALSE(state_.recovery);
-  EXPECT_FALSE(find_recovery(dir.path()));
-  EXPECT_FALSE(fs::exists(dir / "recovery.json"));
+  EXPECT_TRUE(state_.recoveries.empty());
+  EXPECT_TRUE(offered(dir.path()).empty());
+  EXPECT_TRUE(fs::is_empty(dir.path()));
   EXPECT_EQ(doc_.scene, before);
   EXPECT_FALSE(doc_.dirty());
+}
+
+// Two sessions crashed: both are offered, one after the other. Recovering the first makes it the
+// open, unsaved document; the second waits until that is saved (recovering it would replace the
+// first's work), then Discard deletes it. Neither is offered by another editor meanwhile.
+TEST_F(UiTest, EveryCrashedSessionIsOfferedInTurn) {
+  test::TempDir dir;
+  Document first, second;
+  add_sphere(first.scene);
+  add_quad(second.scene);
+  const fs::path first_file = crashed_session(first, dir.path());
+  const fs::path second_file = crashed_session(second, dir.path());
+  fs::last_write_time(second_file, fs::last_write_time(first_file) - std::chrono::hours(1));
+  state_.recoveries = offered(dir.path());
+  ASSERT_EQ(state_.recoveries.size(), 2u);
+  EXPECT_TRUE(offered(dir.path()).empty());  // held by this editor while on offer
+  for (int i = 0; i < 3; ++i) frame();
+  ASSERT_TRUE(recovery_offer_open_);
+  click(popup_button("Recover unsaved work?", 0, 110));  // the newest: `first`
+  for (int i = 0; i < 3; ++i) frame();
+  EXPECT_EQ(doc_.scene.spheres.size(), first.scene.spheres.size());
+  EXPECT_TRUE(doc_.dirty());
+  EXPECT_FALSE(fs::exists(first_file));
+  EXPECT_FALSE(recovery_offer_open_);  // waits: the recovered work is not saved yet
+  ASSERT_EQ(state_.recoveries.size(), 1u);
+  EXPECT_TRUE(fs::exists(second_file));
+
+  doc_.save(dir / "recovered.glint");
+  for (int i = 0; i < 3; ++i) frame();
+  ASSERT_TRUE(recovery_offer_open_);
+  click(popup_button("Recover unsaved work?", 1, 110));  // Discard
+  frame();
+  EXPECT_FALSE(recovery_offer_open_);
+  EXPECT_TRUE(state_.recoveries.empty());
+  EXPECT_FALSE(fs::exists(second_file));
+  EXPECT_EQ(doc_.scene.spheres.size(), first.scene.spheres.size());
 }
 
 // Enter on a typed path that fails to open: the error box opens in that frame and must not
@@ -455,7 +507,20 @@ TEST_F(UiTest, AutosaveFailureShowsInTheStatusLine) {
   frame();
   text = status_text();
   EXPECT_EQ(text.find("autosave failed"), std::string::npos) << text;
-  EXPECT_TRUE(find_recovery(dir / "blocker" / "glint"));
+  EXPECT_TRUE(fs::exists(state_.autosave->file()));
+}
+
+// Problems with the editor's own files show in the status line, joined while one shows, beside
+// the transient message (which does not hide them).
+TEST_F(UiTest, StateFileNotesShowInTheStatusLine) {
+  show_note(state_, "/cfg/recent.json: is a FIFO, not a regular file; the recent-files list is empty for now");
+  show_message(state_, "Opened something");
+  show_note(state_, "/cfg/layout.ini: is a folder, not a regular file; using the default layout");
+  frame();
+  const std::string text = status_text();
+  EXPECT_NE(text.find("the recent-files list is empty for now; /cfg/layout.ini: is a folder"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("Opened something"), std::string::npos) << text;
 }
 
 // ---- Usability: the automatic preview, the film frame, deleting, dropping files.
