@@ -44,6 +44,7 @@ std::optional<std::string> read_state_file(const fs::path& file, size_t max_byte
   if (!S_ISREG(st.st_mode)) throw StateFileError(file, "is " + non_regular_kind(st.st_mode) + ", not a regular file");
   if (static_cast<uintmax_t>(st.st_size) > max_bytes) throw StateFileError(file, too_large(size_t(st.st_size), max_bytes));
   std::string text;
+  text.reserve(static_cast<size_t>(st.st_size));
   char buffer[65536];
   for (;;) {  // at most one buffer past the limit: the file may grow after fstat
     const ssize_t n = ::read(d.fd, buffer, sizeof buffer);
