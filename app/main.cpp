@@ -1,5 +1,6 @@
 // glint: the scene editor (GLFW + Dear ImGui) and `glint render` (headless).
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "editor/editor_app.h"
@@ -46,9 +47,18 @@ const char* const kHelp =
 #endif
     ;
 
+// The XDG Base Directory specification: a relative path in one of these is invalid and must be
+// ignored. Unset here, for the whole process, so that the libraries Glint loads ignore it too
+// (Mesa would otherwise put its shader cache in whatever folder a render starts in).
+void ignore_relative_xdg_dirs() {
+  for (const char* name : {"XDG_CACHE_HOME", "XDG_CONFIG_HOME", "XDG_STATE_HOME", "XDG_DATA_HOME"})
+    if (const char* value = std::getenv(name); value && *value != '/') unsetenv(name);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  ignore_relative_xdg_dirs();
   std::string command = argc > 1 ? argv[1] : "";
   if (command == "render") return glint::run_render_command(argc - 2, argv + 2);
   if (command == "merge") return glint::run_merge_command(argc - 2, argv + 2);

@@ -43,3 +43,14 @@ expect("--backend;vulkan" 2 "--backend expects auto, fragment or compute, got 'v
 expect("--backend" 2 "--backend needs a value")
 expect("--work-group;64x64" 2 "--work-group expects WxH")
 message(STATUS "glint render --backend: fragment, compute, auto (timed, then cached) and bad values handled")
+
+# A relative XDG_CACHE_HOME is ignored (the XDG Base Directory specification), by Glint and by the
+# libraries it loads: the cache goes to $HOME/.cache, and nothing appears in the current folder.
+file(MAKE_DIRECTORY "${OUT}/cwd" "${OUT}/home")
+execute_process(COMMAND ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=relative-cache HOME=${OUT}/home
+                "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2
+                WORKING_DIRECTORY "${OUT}/cwd" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR EXISTS "${OUT}/cwd/relative-cache" OR NOT EXISTS "${OUT}/home/.cache/glint/backend.json")
+  file(GLOB_RECURSE made RELATIVE "${OUT}" "${OUT}/cwd/*" "${OUT}/home/*")
+  message(FATAL_ERROR "a relative XDG_CACHE_HOME was not ignored (exit ${rc}; made: ${made})\n${err}")
+endif()
