@@ -39,8 +39,10 @@ void draw_recovery_offer(Document& doc, EditorState& state) {
   ImGui::TextUnformatted("A Glint session did not exit cleanly.");
   ImGui::Text("Unsaved changes of %s%s can be recovered.", name.c_str(),
               when.empty() ? "" : (", autosaved " + when + ",").c_str());
-  if (state.recoveries.size() > 1)
-    ImGui::Text("%zu more sessions left unsaved work; each is offered after this one.", state.recoveries.size() - 1);
+  if (const size_t more = state.recoveries.size() - 1; more == 1)
+    ImGui::TextUnformatted("1 more session left unsaved work; it is offered after this one.");
+  else if (more > 1)
+    ImGui::Text("%zu more sessions left unsaved work; each is offered after this one.", more);
   ImGui::Spacing();
   if (ImGui::Button("Recover", ImVec2(ui_units(110), 0))) {
     doc = open_recovery(r);
