@@ -6,7 +6,7 @@
 // fragment shader into ping-pong RGBA32F buffers or with the compute shader in place
 // (renderer/trace_backend.h); update_display() re-runs the tonemap pass when its inputs
 // changed. The running mean is kept with Kahan compensation (a second RGBA32F texture;
-// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md),
+// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/reports/SOAK.md),
 // and beside it each pixel's variance (two more), from which estimate_error() tells the
 // image's expected error without a reference (renderer/error_estimate.h).
 //

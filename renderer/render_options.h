@@ -1,6 +1,6 @@
 // How the renderer estimates an image, as opposed to what the scene is: these are not saved in
 // projects. The defaults are unbiased. The default sampler is Owen-scrambled Sobol (less error
-// per sample, bench/RESULTS.md); every seed is an independent scramble, so error bars from seed
+// per sample, bench/reports/RESULTS.md); every seed is an independent scramble, so error bars from seed
 // spreads hold as they do for PCG's independent numbers (tests/unit/shader_sobol_test.cpp,
 // tests/gl/light_sampling_test.cpp). The switches exist so that the bench can measure each
 // technique and users can trade bias for noise.

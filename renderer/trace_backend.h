@@ -20,7 +20,7 @@ enum class TraceBackend { fragment, compute };
 const char* backend_name(TraceBackend backend);  // "fragment", "compute"
 std::optional<TraceBackend> parse_backend(const std::string& name);
 
-// Invocations per compute work group; 8x8 measured fastest on llvmpipe (bench/THROUGHPUT.md).
+// Invocations per compute work group; 8x8 measured fastest on llvmpipe (bench/reports/THROUGHPUT.md).
 struct WorkGroup {
   int x = 8;
   int y = 8;

@@ -2,7 +2,7 @@
 """Glint project (.glint, format version 1) -> Mitsuba 3 scene dictionary (mi.load_dict).
 
 Only scenes whose parts Mitsuba models the same way are exported; anything else raises
-Unsupported with the reasons. What maps, and how (each checked by bench/run.py's convention
+Unsupported with the reasons. What maps, and how (each checked by bench/tools/run.py's convention
 test or by the Cornell/furnace comparisons in RESULTS.md):
 
 - matte            -> twosided(diffuse)          (Glint shades both sides of every surface)
@@ -101,7 +101,7 @@ def llvm_candidates():
     c = []
     if os.environ.get("DRJIT_LIBLLVM_PATH"):
         c.append(os.environ["DRJIT_LIBLLVM_PATH"])
-    c += sorted(glob.glob(os.path.join(here, ".venv", "llvm", "usr", "lib", "*", "libLLVM*.so*")),
+    c += sorted(glob.glob(os.path.join(here, "..", ".venv", "llvm", "usr", "lib", "*", "libLLVM*.so*")),
                 reverse=True)
     c += sorted(glob.glob("/usr/lib/*/libLLVM-*.so*") + glob.glob("/usr/lib/llvm-*/lib/libLLVM*.so*"),
                 key=lambda p: [int(x) for x in __import__("re").findall(r"\d+", os.path.basename(p))][:1] or [0],
