@@ -1,4 +1,4 @@
-// Which entry point of the path tracer to use on this device (docs/DESIGN.md §2): the faster
+// Which entry point of the path tracer to use on this device (docs/DESIGN.md §3.3): the faster
 // of the fragment and the compute shader, timed once on a small fixed scene and remembered per
 // device. Why both exist: on Mesa's llvmpipe the fragment shader is faster; NVIDIA's datacenter
 // GPUs run fragment shaders on only a few of their units and compute shaders on all of them.

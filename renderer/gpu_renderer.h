@@ -1,4 +1,4 @@
-// The progressive GPU path tracer (docs/DESIGN.md §2). Runs in any current OpenGL 4.5 core
+// The progressive GPU path tracer (docs/DESIGN.md §3). Runs in any current OpenGL 4.5 core
 // context.
 //
 // Per frame: sync(scene) compares digests and uploads only what changed, restarting the
@@ -105,7 +105,7 @@ class GpuRenderer {
   void trace(int samples);
 
   // A pass traced in parts, for a caller that bounds the GPU work of each call (the editor's
-  // export; docs/DESIGN.md §2, Tiled passes): begin_pass(samples) starts it, each trace_rows()
+  // export; docs/DESIGN.md §5.2, Tiled passes): begin_pass(samples) starts it, each trace_rows()
   // traces the next band of image rows, and the call that traces the last row ends it. Every
   // pixel gets the draws that trace(samples) gives it, from one program chosen at the start, so
   // the image is the same. Everything else sees the pass as one unit, at its end: sample_count(),

@@ -1,4 +1,4 @@
-// A progressive render to a target (docs/DESIGN.md §2): passes of a growing batch of samples
+// A progressive render to a target (docs/DESIGN.md §5.1): passes of a growing batch of samples
 // per pixel into a GpuRenderer until a sample count or a time budget is reached. `glint render`
 // runs one to the end, the editor's export steps one a UI slice at a time (its passes traced in
 // bands of rows, so that a slice stays short even when a pass does not), the soak traces its

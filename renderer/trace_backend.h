@@ -1,4 +1,4 @@
-// The two entry points of the path tracer (docs/DESIGN.md §2): the fragment shader
+// The two entry points of the path tracer (docs/DESIGN.md §3.3): the fragment shader
 // (shaders/trace.frag: one full-screen triangle per pass, ping-pong render targets) and the
 // compute shader (shaders/trace.comp: one dispatch per pass, the accumulation read and written
 // in place as images). Both run shaders/trace_common.glsl and give the same image; which is

@@ -1,5 +1,5 @@
 // The path tracer shared by the fragment-shader and the compute-shader entry points
-// (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §2): uniforms, buffers, samplers,
+// (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §3.3): uniforms, buffers, samplers,
 // continue_path and add_samples, one copy, so that both draw the same random numbers and give the
 // same image. Included after the entry point's #version line and the `#define GLINT_NO_...`
 // lines that renderer/shader_features.cpp inserts for what the scene lacks (none defined is
@@ -10,7 +10,7 @@
 // discarded; below u_samples_before only with adaptive sampling). Variance texel: rgb = mean
 // squared deviation of the finite samples from their mean (M2 / n, Chan et al.'s pairwise
 // update), its compensation texel: rgb what float32 could not hold of it; a unused in both.
-// The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §2) is computed from them.
+// The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §4.1) is computed from them.
 // Next-event estimation samples emitting shapes and an environment map; with neither there is
 // nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
 #if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
@@ -152,7 +152,7 @@ uniform float u_env_rotation;
 uniform int u_light_count;
 uniform float u_env_select;
 uniform bool u_russian_roulette;
-// Adaptive sampling (docs/DESIGN.md §2): once a pixel has u_adaptive_min_samples, a pass
+// Adaptive sampling (docs/DESIGN.md §4.2): once a pixel has u_adaptive_min_samples, a pass
 // samples it only if its estimated error per sample taken is at least u_adaptive_threshold,
 // or if the pass is one of every u_adaptive_every (so that every pixel keeps sampling).
 uniform bool u_adaptive;

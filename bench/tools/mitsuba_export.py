@@ -41,7 +41,7 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
                       look_at(position, target, up), near clip 1e-6 of the scene size.
 - film             -> hdrfilm with a box filter of radius 0.5 (Glint averages uniformly
                       jittered samples inside each pixel), linear float RGB.
-- integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 3), Russian roulette
+- integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 6), Russian roulette
                       from depth 5 as Mitsuba's default (unbiased; Glint has none).
 
 Refused: glossy and transparent materials, rough or non-white mirrors, refractive materials
