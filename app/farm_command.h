@@ -1,6 +1,6 @@
 // `glint farm`: a render split into sample-range parts on a Slurm cluster (a job array of
 // `glint render --samples A:B` and a `glint merge` job that depends on it), its status, and
-// resubmitting only the parts that failed. docs/DESIGN.md §6, README "Rendering on a cluster".
+// resubmitting only the parts that failed. docs/DESIGN.md §9, README "Rendering on a cluster".
 #pragma once
 
 namespace glint {

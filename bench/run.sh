@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The benchmark: speed against error for the bench scenes, and Mitsuba 3 as an independent
 # reference. Makes its own Python environment (bench/.venv, pinned by bench/requirements.txt),
-# builds Glint when build/glint is missing (and no --glint is given), then runs bench/run.py, which writes
-# bench/RESULTS.md and its plots. Arguments go to run.py (--quick: tiny validation run written
+# builds Glint when build/glint is missing (and no --glint is given), then runs bench/tools/run.py, which writes
+# bench/reports/RESULTS.md and its plots. Arguments go to run.py (--quick: tiny validation run written
 # to build-bench/quick/; --help lists the rest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,4 +22,4 @@ case " $* " in
   *) [ -x build/glint ] || bash scripts/build.sh ;;
 esac
 export PYTHONDONTWRITEBYTECODE=1
-exec "$VENV/bin/python" bench/run.py "$@"
+exec "$VENV/bin/python" bench/tools/run.py "$@"

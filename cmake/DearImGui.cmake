@@ -2,7 +2,7 @@
 # published crates on crates.io (the dear-imgui-rs family bundles the C++ sources), fetched by
 # cargo (sparse index) at configure time, pinned to one version and checked against a SHA-256
 # here. Only their C++ files are compiled, as static libraries; nothing of them is copied into the
-# repository. docs/DESIGN.md §2 says why these crates.
+# repository. docs/DESIGN.md §2.2 says why these crates.
 set(IMGUI_CRATES_VERSION 0.22.0)
 set(IMGUI_CRATES dear-imgui-sys dear-implot-sys)
 set(dear-imgui-sys_SHA256 7b82f66d6c4165fb1e40888e48765d7175ecf96b7c411d351304c8fa8ca6f365)

@@ -1,4 +1,4 @@
-// One frame of the editor, top to bottom (docs/DESIGN.md §2). Between ImGui::NewFrame() and
+// One frame of the editor, top to bottom (docs/DESIGN.md §2.1). Between ImGui::NewFrame() and
 // the backend's draw; the app (editor_app.cpp) and the UI tests run the same function.
 #pragma once
 

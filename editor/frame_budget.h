@@ -79,7 +79,7 @@ struct PreviewFrame {
   int64_t full_pixels = 1;     // the viewport in framebuffer pixels
 };
 
-// The automatic preview's resolution over time (docs/DESIGN.md §2). An edit drops it to the
+// The automatic preview's resolution over time (docs/DESIGN.md §2.7). An edit drops it to the
 // frame budget's divisor, so that dragging stays fluid; when nothing is edited and the user is
 // idle, it refines by halving the divisor down to full resolution, as long as one pass at the
 // finer level fits config().idle_trace_seconds. The level changes only then: frames that edit

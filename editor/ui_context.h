@@ -1,5 +1,5 @@
 // The editor's Dear ImGui context: docking on, ImPlot's context beside it, a scalable font, the
-// dark style, and everything sized by the monitor's content scale (docs/DESIGN.md §2). The app
+// dark style, and everything sized by the monitor's content scale (docs/DESIGN.md §2.3). The app
 // and the headless UI tests make the context the same way.
 #pragma once
 

@@ -1,5 +1,5 @@
 // What the viewport renderer is asked for and what it gives back each frame: plain values, so
-// that it needs no UI state (docs/DESIGN.md §2).
+// that it needs no UI state (docs/DESIGN.md §2.1).
 #pragma once
 
 #include <cstdint>

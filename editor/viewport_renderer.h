@@ -1,4 +1,4 @@
-// The viewport's side of one frame (docs/DESIGN.md §2): renderer.sync(scene, size), k samples
+// The viewport's side of one frame (docs/DESIGN.md §2.1): renderer.sync(scene, size), k samples
 // chosen by the frame budget, update_display(). Every accumulation reset comes from sync()
 // comparing digests: nothing here resets on its own. Knows no UI: a ViewportRequest in, a
 // ViewportFrame out.

@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 // 8 (a few ms) a fixed cost per fragment-shader pass (at least partly llvmpipe's threads
 // sharing a CPU, see llvmpipe_threads.h) made the fragment shader look 0.7-1.1x
 // the compute shader on the timing scene on Mesa 25, where `glint render`'s long passes trace
-// it about 1.3x as fast (bench/THROUGHPUT.md, "The back-end timing's passes").
+// it about 1.3x as fast (bench/reports/THROUGHPUT.md, "The back-end timing's passes").
 constexpr int kTimingSize = 128, kTimingRounds = 5, kTimingSpp = 32;
 
 double seconds_since(Clock::time_point start) {

@@ -1,4 +1,4 @@
-// Which entry point of the path tracer to use on this device (docs/DESIGN.md §2): the faster
+// Which entry point of the path tracer to use on this device (docs/DESIGN.md §3.3): the faster
 // of the fragment and the compute shader, timed once on a small fixed scene and remembered per
 // device. Why both exist: on Mesa's llvmpipe the fragment shader is faster; NVIDIA's datacenter
 // GPUs run fragment shaders on only a few of their units and compute shaders on all of them.
@@ -49,7 +49,7 @@ struct BackendTiming {
 BackendTiming time_backends();
 
 // Compute is chosen only when it is this much faster: on llvmpipe the two are within the
-// timing's noise of each other on some scenes (bench/THROUGHPUT.md), and a choice that flips
+// timing's noise of each other on some scenes (bench/reports/THROUGHPUT.md), and a choice that flips
 // with the machine's load would be cached either way; where compute matters (GPUs that run
 // fragment shaders on a few units) it is expected to be many times faster.
 constexpr double kComputeMargin = 1.1;

@@ -68,10 +68,10 @@ bool refit_bvh(Bvh& bvh, const std::vector<GpuSphere>& spheres, const std::vecto
 double sah_cost(const Bvh& bvh);
 
 // Shapes from which the BVH beats the plain loop. Measured on Mesa llvmpipe (this 2-core
-// machine, shared, so noisy): `python3 bench/scale.py --sizes 4,8,16,32,64,128 --repeats 5
+// machine, shared, so noisy): `python3 bench/tools/scale.py --sizes 4,8,16,32,64,128 --repeats 5
 // --spp 8` (64x64 pixels, 4 bounces, a grid of spheres on a floor quad), median samples per
 // pixel per second loop / BVH: 4 spheres 123 / 82, 8: 60 / 58, 16: 70 / 42, 32: 39 / 34,
-// 64: 19 / 27, 128: 11 / 23; again with bench/scale.py's fixed framing (shapes shrinking with
+// 64: 19 / 27, 128: 11 / 23; again with bench/tools/scale.py's fixed framing (shapes shrinking with
 // N, one floor quad): 4: 130 / 89, 8: 76 / 49, 16: 58 / 48, 32: 45 / 43, 64: 29 / 39,
 // 128: 16 / 34. The crossover lies between 33 and 65 shapes; 48 is between.
 constexpr long kBvhCrossoverShapes = 48;

@@ -1,4 +1,4 @@
-// Importance-sampling tables for a lat-long environment image (docs/DESIGN.md §3): a piecewise-
+// Importance-sampling tables for a lat-long environment image (docs/DESIGN.md §6): a piecewise-
 // constant 2-D distribution over the texels, sampled and evaluated on the GPU and in the tests
 // by shaders/lib/environment_sampling.glsl (one copy of the maths).
 #pragma once

@@ -1,4 +1,4 @@
-// The image's error estimated without a reference (docs/DESIGN.md §2): from the per-pixel
+// The image's error estimated without a reference (docs/DESIGN.md §4.1): from the per-pixel
 // variance that the trace pass keeps beside the mean (shaders/trace_common.glsl), the relMSE
 // of renderer/image_metrics.h (epsilon 0.01) that the image is expected to have against the
 // converged one. Computed on the GPU by shaders/error_reduce.frag, which sums 16x16 blocks

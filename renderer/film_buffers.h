@@ -1,4 +1,4 @@
-// The film of the GPU renderer (docs/DESIGN.md §2, Accumulation): the RGBA32F targets a trace
+// The film of the GPU renderer (docs/DESIGN.md §3.6, Accumulation): the RGBA32F targets a trace
 // pass adds its samples to (running mean and its Kahan compensation, variance and its
 // compensation; a ping-pong pair of each on the fragment path, one written in place on the
 // compute path), and the RGBA8 display image the tonemap pass makes of the mean.

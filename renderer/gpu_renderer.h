@@ -1,4 +1,4 @@
-// The progressive GPU path tracer (docs/DESIGN.md §2). Runs in any current OpenGL 4.5 core
+// The progressive GPU path tracer (docs/DESIGN.md §3). Runs in any current OpenGL 4.5 core
 // context.
 //
 // Per frame: sync(scene) compares digests and uploads only what changed, restarting the
@@ -6,7 +6,7 @@
 // fragment shader into ping-pong RGBA32F buffers or with the compute shader in place
 // (renderer/trace_backend.h); update_display() re-runs the tonemap pass when its inputs
 // changed. The running mean is kept with Kahan compensation (a second RGBA32F texture;
-// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/SOAK.md),
+// shaders/trace_common.glsl) so that 10^5 passes do not drift it (tests/soak, bench/reports/SOAK.md),
 // and beside it each pixel's variance (two more), from which estimate_error() tells the
 // image's expected error without a reference (renderer/error_estimate.h).
 //
@@ -105,7 +105,7 @@ class GpuRenderer {
   void trace(int samples);
 
   // A pass traced in parts, for a caller that bounds the GPU work of each call (the editor's
-  // export; docs/DESIGN.md §2, Tiled passes): begin_pass(samples) starts it, each trace_rows()
+  // export; docs/DESIGN.md §5.2, Tiled passes): begin_pass(samples) starts it, each trace_rows()
   // traces the next band of image rows, and the call that traces the last row ends it. Every
   // pixel gets the draws that trace(samples) gives it, from one program chosen at the start, so
   // the image is the same. Everything else sees the pass as one unit, at its end: sample_count(),

@@ -11,7 +11,7 @@
 namespace glint {
 
 // The relative errors use this epsilon so that black reference pixels do not divide by zero
-// (the usual value for relMSE in the rendering literature; docs/DESIGN.md §7).
+// (the usual value for relMSE in the rendering literature; docs/DESIGN.md §10).
 inline constexpr double kMetricEpsilon = 0.01;
 // Fraction of pixels, the largest per-pixel relMSE values, dropped by relmse_trimmed.
 inline constexpr double kTrimFraction = 0.001;

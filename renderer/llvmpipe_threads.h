@@ -3,7 +3,7 @@
 // they had slept for a while (10 ms sufficed on the development machine), a draw often started
 // with two of them on one CPU while another CPU stayed idle (Linux wakes a thread near the thread
 // that wakes it), and a draw of a few milliseconds then took as long as on one thread
-// (bench/THROUGHPUT.md, "Short passes and llvmpipe's threads"). Pinning thread k to the k-th CPU
+// (bench/reports/THROUGHPUT.md, "Short passes and llvmpipe's threads"). Pinning thread k to the k-th CPU
 // that this process may use keeps them apart. Linux only; elsewhere nothing is done.
 #pragma once
 

@@ -2,7 +2,7 @@
 // Mesa 22's llvmpipe (Debian 12's own, Ubuntu 22.04's) ends every loop of a shader invocation,
 // fragment or compute, once all its loops together have run 65535 iterations
 // (LP_MAX_TGSI_LOOP_ITERATIONS, "shared between every loop"; Mesa 25.0 has no such limit,
-// bench/THROUGHPUT.md "Mesa 25"): a pass of many samples then
+// bench/reports/THROUGHPUT.md "Mesa 25"): a pass of many samples then
 // silently skips intersection tests and returns garbage or NaN (the default project at 16x16 in
 // one pass of 1000 samples, with the shader as it was before its closest-hit loop was unrolled:
 // 28% of samples non-finite with either entry point; in passes of 100: none). So the renderer
@@ -51,8 +51,8 @@ inline long bvh_loop_iterations_per_sample(int steps, int leaf_size, int max_bou
 // average), so the cap of 360 at 8 bounces is rarely reached (gl.hard_LoopLimit.BvhSceneOfTenThousandSpheres
 // checks that a 10^4-sphere scene discards no sample). With many bounces the cap would fall below
 // kMinBvhSteps; it stays there, and the scene is reported as exceeding the limit. Measured
-// (bench/scale.py scenes, 4 bounces, cap 602, 64x64 pixels at 4 spp): at 10^5 spheres one
-// sample in 16384 reached it (with a cap of 4000 none did); bench/SCALING.md counts them. Drivers without the limit get
+// (bench/tools/scale.py scenes, 4 bounces, cap 602, 64x64 pixels at 4 spp): at 10^5 spheres one
+// sample in 16384 reached it (with a cap of 4000 none did); bench/reports/SCALING.md counts them. Drivers without the limit get
 // kMaxBvhSteps (GpuRenderer).
 constexpr int kMinBvhSteps = 128;
 constexpr int kMaxBvhSteps = 4096;

@@ -1,7 +1,7 @@
 // The uniform block of shaders/unrolled_loop.glsl: a scene of few shapes is traced by a program
 // compiled for exactly its numbers of spheres and quads, whose closest-hit loop is unrolled and
 // reads each shape from this block at a constant offset (one load for all SIMD lanes on
-// llvmpipe, instead of a per-lane table fetch; bench/THROUGHPUT.md measures it). No GL here.
+// llvmpipe, instead of a per-lane table fetch; bench/reports/THROUGHPUT.md measures it). No GL here.
 #pragma once
 
 #include <vector>

@@ -1,4 +1,4 @@
-// The material types in one table (docs/DESIGN.md §4): for each, its name in the project file,
+// The material types in one table (docs/DESIGN.md §7): for each, its name in the project file,
 // the shader's integer code, the define that compiles it out of a specialised trace program,
 // which of a material's fields it reads, and the editor's one-line summary. A new type is one
 // row here (in the enum's order), its lobe in shaders/lib/bsdf.glsl and its chi-square test.

@@ -1,4 +1,4 @@
-// Merging render parts (docs/DESIGN.md §6) one at a time: a part's pixels are added to per-pixel
+// Merging render parts (docs/DESIGN.md §9) one at a time: a part's pixels are added to per-pixel
 // sums in double and dropped, so a merge holds one film's sums and one part whatever the number
 // of parts.
 #pragma once

@@ -3,7 +3,7 @@
 // lane of the group has a path in flight. Both give the same image (each sample is the same,
 // added in the same order); only the speed differs, and which is faster depends on the scene.
 //
-// Measured on llvmpipe (Mesa 25, bench/THROUGHPUT.md, "Restarting paths together"): starting
+// Measured on llvmpipe (Mesa 25, bench/reports/THROUGHPUT.md, "Restarting paths together"): starting
 // together traced 0.98-1.22x the samples per second of starting at once on 11 scenes under a
 // lit environment (faster on 9: paths escape after a few bounces, so their lengths are alike,
 // and starting at once runs the start-up code whenever any lane of the group has ended, next

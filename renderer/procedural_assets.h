@@ -25,7 +25,7 @@ Image metal_roughness(int size = 256);
 Image checker_with_holes(int size = 256);
 
 // Lat-long sky, linear HDR: first row is straight up (v = 0 is +Y), a world direction d maps to
-// u = atan2(d.z, d.x) / 2pi (wrapped into [0,1)), v = acos(d.y) / pi (docs/DESIGN.md §3).
+// u = atan2(d.z, d.x) / 2pi (wrapped into [0,1)), v = acos(d.y) / pi (docs/DESIGN.md §6).
 struct SkyOptions {
   int width = 512;
   int height = 256;
@@ -43,7 +43,7 @@ Image sky(const SkyOptions& options = {});
 // The unit direction towards the sun's centre.
 glm::vec3 sun_direction(const SkyOptions& options);
 
-// The lat-long mapping of docs/DESIGN.md §3 (no rotation): image coordinates in [0,1]^2 to a unit
+// The lat-long mapping of docs/DESIGN.md §6 (no rotation): image coordinates in [0,1]^2 to a unit
 // direction and back.
 glm::vec3 latlong_direction(float u, float v);
 glm::vec2 latlong_uv(const glm::vec3& direction);

@@ -1,5 +1,5 @@
 // The error type of project files and scene validation: a problem with the file it was found
-// in and the JSON path of the value (docs/DESIGN.md §3).
+// in and the JSON path of the value (docs/DESIGN.md §6).
 #pragma once
 
 #include <stdexcept>

@@ -1,4 +1,4 @@
-// Project files (.glint, JSON, format version 1; docs/DESIGN.md §3): load with full validation,
+// Project files (.glint, JSON, format version 1; docs/DESIGN.md §6): load with full validation,
 // save atomically (temporary file renamed over the old one), exact round trip.
 #pragma once
 

@@ -1,6 +1,6 @@
 // How the renderer estimates an image, as opposed to what the scene is: these are not saved in
 // projects. The defaults are unbiased. The default sampler is Owen-scrambled Sobol (less error
-// per sample, bench/RESULTS.md); every seed is an independent scramble, so error bars from seed
+// per sample, bench/reports/RESULTS.md); every seed is an independent scramble, so error bars from seed
 // spreads hold as they do for PCG's independent numbers (tests/unit/shader_sobol_test.cpp,
 // tests/gl/light_sampling_test.cpp). The switches exist so that the bench can measure each
 // technique and users can trade bias for noise.
@@ -33,7 +33,7 @@ struct RenderOptions {
   // samples takes there (for every sampler). A sample range A:B (`glint render --samples`)
   // is first_sample = A and B-A samples; merging ranges 0..N gives the N-sample render.
   uint32_t first_sample = 0;
-  // Adaptive sampling (docs/DESIGN.md §2): pixels whose estimated error per sample is below the
+  // Adaptive sampling (docs/DESIGN.md §4.2): pixels whose estimated error per sample is below the
   // image's mean wait, except every adaptive_every-th pass, once they hold adaptive_min_samples.
   // Off by default: a uniform render's every pixel gets the same samples, so sample ranges of
   // a render add up to it exactly and tests compare images bit for bit.

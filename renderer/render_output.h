@@ -42,7 +42,7 @@ Image render_colour(const GpuRenderer& renderer);
 // The display image of a linear one, by the formula of the GPU's tonemap pass (shaders/lib/
 // tonemap.glsl, here compiled as C++), alpha 1: what a PNG holds. The GPU's own display image
 // may differ from it by one 8-bit level where the driver rounds differently (docs/DESIGN.md
-// §8, Outputs).
+// §11, Outputs).
 Image tonemapped(const Image& linear, const DisplaySettings& display);
 
 // What a finished render writes, read back from the GPU (on the GL thread).

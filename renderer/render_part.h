@@ -1,4 +1,4 @@
-// A render in parts (docs/DESIGN.md §6): a sample range A:B of a render is the samples A..B-1 of
+// A render in parts (docs/DESIGN.md §9): a sample range A:B of a render is the samples A..B-1 of
 // its sequence (RenderOptions::first_sample), saved as an OpenEXR file whose header says which
 // render it belongs to. Parts that cover 0..N without gap or overlap merge into the N-sample
 // render: the mean of their means weighted by their sample counts.

@@ -1,4 +1,4 @@
-// A progressive render to a target (docs/DESIGN.md §2): passes of a growing batch of samples
+// A progressive render to a target (docs/DESIGN.md §5.1): passes of a growing batch of samples
 // per pixel into a GpuRenderer until a sample count or a time budget is reached. `glint render`
 // runs one to the end, the editor's export steps one a UI slice at a time (its passes traced in
 // bands of rows, so that a slice stays short even when a pass does not), the soak traces its
@@ -38,7 +38,7 @@ const char* stop_reason_text(StopReason reason);  // "sample count", "time", "er
 // measures, the next ones are full. Few large passes are faster than many small ones: a
 // pass's draws trace up to the loop budget's samples per pixel, and with path regeneration a
 // lane whose path ends starts the pixel's next sample, so a one-sample draw leaves the lanes
-// of short paths idle (bench/THROUGHPUT.md).
+// of short paths idle (bench/reports/THROUGHPUT.md).
 struct BatchPolicy {
   int first_batch = 1;
   int max_batch = 1024;

@@ -1,4 +1,4 @@
-// The scene model of docs/DESIGN.md §3: plain values, no behaviour beyond small look-ups.
+// The scene model of docs/DESIGN.md §6: plain values, no behaviour beyond small look-ups.
 // Field defaults are the defaults of the project file format (missing keys take these).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Change detection by digests (docs/DESIGN.md §2): the renderer compares digests of the scene's
+// Change detection by digests (docs/DESIGN.md §2.4): the renderer compares digests of the scene's
 // parts instead of relying on edits to mark anything dirty. Each digest covers exactly the
 // values that one part of the GPU state is derived from.
 #pragma once

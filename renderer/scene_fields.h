@@ -3,7 +3,7 @@
 // and its value check. The project file's reader and writer (project_file.cpp), validate_scene
 // (scene_validation.cpp) and the digests (scene_digest.cpp) walk these tables instead of
 // listing the members again, so a field is read, written, checked and digested as soon as it is
-// listed here. Table order is the file's key order (docs/DESIGN.md §3) and the order in which
+// listed here. Table order is the file's key order (docs/DESIGN.md §6) and the order in which
 // problems are reported.
 //
 // A member added to a struct of scene.h fails to compile below (the structured bindings of
@@ -90,7 +90,7 @@ struct EnumNames<Tonemap> {
 template <class T>
 struct FieldTable;  // visit(v) calls v(field) for each field of T, in file order
 
-// The largest max_bounces (docs/DESIGN.md §3).
+// The largest max_bounces (docs/DESIGN.md §6).
 constexpr int kMaxBounces = 1024;
 
 template <>

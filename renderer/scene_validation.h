@@ -1,4 +1,4 @@
-// The limits of a scene and its validation (docs/DESIGN.md §3): what the loader checks after
+// The limits of a scene and its validation (docs/DESIGN.md §6): what the loader checks after
 // parsing and the editor after every edit. The file format (project_file.h) is not involved:
 // a scene built through the API is checked the same way.
 #pragma once
@@ -13,7 +13,7 @@
 
 namespace glint {
 
-// Limits of a scene, checked on load and by validate_scene (docs/DESIGN.md §3 lists them).
+// Limits of a scene, checked on load and by validate_scene (docs/DESIGN.md §6 lists them).
 //  - Film: at most kMaxFilmSide pixels per side (the GL_MAX_TEXTURE_SIZE of llvmpipe and common
 //    GPUs) and kMaxFilmPixels in all. The renderer keeps kFilmBytesPerPixel of GPU memory per
 //    pixel (two RGBA32F accumulation textures, two RGBA32F compensation textures and an RGBA8

@@ -11,7 +11,7 @@
 // costs its full time; Mesa 25 skips a side that no lane of the group takes, but runs both
 // where the group's lanes disagree, as they do wherever its pixels see different materials.
 // So code that a uniform switches off is compiled out wherever the scene allows it
-// (bench/THROUGHPUT.md measures it on both).
+// (bench/reports/THROUGHPUT.md measures it on both).
 #pragma once
 
 #include <cstdint>

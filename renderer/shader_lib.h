@@ -1,4 +1,4 @@
-// The shared shader maths (shaders/lib/*.glsl) compiled as C++ (docs/DESIGN.md §5), in float, as
+// The shared shader maths (shaders/lib/*.glsl) compiled as C++ (docs/DESIGN.md §8), in float, as
 // glint::gpu::*. The same files are compiled by the GPU in the trace shader; the editor's
 // picking and the CPU tests use them from here. The prelude below supplies the GLSL names
 // that GLM spells differently; the GLSL files use only the common subset.

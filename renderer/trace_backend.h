@@ -1,4 +1,4 @@
-// The two entry points of the path tracer (docs/DESIGN.md §2): the fragment shader
+// The two entry points of the path tracer (docs/DESIGN.md §3.3): the fragment shader
 // (shaders/trace.frag: one full-screen triangle per pass, ping-pong render targets) and the
 // compute shader (shaders/trace.comp: one dispatch per pass, the accumulation read and written
 // in place as images). Both run shaders/trace_common.glsl and give the same image; which is
@@ -20,7 +20,7 @@ enum class TraceBackend { fragment, compute };
 const char* backend_name(TraceBackend backend);  // "fragment", "compute"
 std::optional<TraceBackend> parse_backend(const std::string& name);
 
-// Invocations per compute work group; 8x8 measured fastest on llvmpipe (bench/THROUGHPUT.md).
+// Invocations per compute work group; 8x8 measured fastest on llvmpipe (bench/reports/THROUGHPUT.md).
 struct WorkGroup {
   int x = 8;
   int y = 8;

@@ -1,4 +1,4 @@
-// The draws of a trace pass (docs/DESIGN.md §2): binding a trace program with the renderer's
+// The draws of a trace pass (docs/DESIGN.md §3.1): binding a trace program with the renderer's
 // tables, textures and film, drawing a band of image rows with all of a pass's draws, the
 // warm-up draw that makes a driver compile before the clock starts, and the program worker's
 // job that draws the same way in its own context.

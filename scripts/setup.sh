@@ -29,7 +29,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # Mesa's llvmpipe, the CPU OpenGL driver that the tests and machines without a GPU run: Debian
-# 12's own Mesa 22.3 traces Glint's shaders at 0.36-0.71x the speed of Mesa 25 (bench/
+# 12's own Mesa 22.3 traces Glint's shaders at 0.36-0.71x the speed of Mesa 25 (bench/reports/
 # THROUGHPUT.md, "Mesa 25"), which Debian ships for Debian 12 in bookworm-backports. On
 # Debian 12 setup takes Mesa from there, the version it was measured and tested with.
 mesa_pin="25.0.7-2~bpo12+1"

@@ -1,5 +1,5 @@
 // The path tracer shared by the fragment-shader and the compute-shader entry points
-// (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §2): uniforms, buffers, samplers,
+// (shaders/trace.frag, shaders/trace.comp; docs/DESIGN.md §3.3): uniforms, buffers, samplers,
 // continue_path and add_samples, one copy, so that both draw the same random numbers and give the
 // same image. Included after the entry point's #version line and the `#define GLINT_NO_...`
 // lines that renderer/shader_features.cpp inserts for what the scene lacks (none defined is
@@ -10,7 +10,7 @@
 // discarded; below u_samples_before only with adaptive sampling). Variance texel: rgb = mean
 // squared deviation of the finite samples from their mean (M2 / n, Chan et al.'s pairwise
 // update), its compensation texel: rgb what float32 could not hold of it; a unused in both.
-// The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §2) is computed from them.
+// The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §4.1) is computed from them.
 // Next-event estimation samples emitting shapes and an environment map; with neither there is
 // nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
 #if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
@@ -78,7 +78,7 @@ ivec2 texel_position(int texel) {
 // unit 7 + k holds the renderer's table k (GpuRenderer::upload_table). Why not storage buffers:
 // on llvmpipe a storage-buffer read is a loop over the SIMD group's lanes with a branch per lane
 // and component, a texel fetch one gather, and a buffer texture's fetch is cheaper than a 2-D
-// texture's (bench/THROUGHPUT.md).
+// texture's (bench/reports/THROUGHPUT.md).
 layout(binding = 7) uniform isamplerBuffer u_sphere_table;          // GpuSphere: 2 texels
 layout(binding = 8) uniform isamplerBuffer u_quad_table;            // GpuQuad: 8 texels
 layout(binding = 9) uniform isamplerBuffer u_material_table;        // GpuMaterial: 4 texels
@@ -152,7 +152,7 @@ uniform float u_env_rotation;
 uniform int u_light_count;
 uniform float u_env_select;
 uniform bool u_russian_roulette;
-// Adaptive sampling (docs/DESIGN.md §2): once a pixel has u_adaptive_min_samples, a pass
+// Adaptive sampling (docs/DESIGN.md §4.2): once a pixel has u_adaptive_min_samples, a pass
 // samples it only if its estimated error per sample taken is at least u_adaptive_threshold,
 // or if the pass is one of every u_adaptive_every (so that every pixel keeps sampling).
 uniform bool u_adaptive;
@@ -365,7 +365,7 @@ SceneHit intersect_scene(Ray ray) {
 // is treated as opaque at the last one.
 const int MAX_PASS_THROUGH = 64;
 // Russian roulette starts after this many bounces (the first ones carry most of the light), as
-// Mitsuba 3's rr_depth; bench/THROUGHPUT.md compares it with an earlier start.
+// Mitsuba 3's rr_depth; bench/reports/THROUGHPUT.md compares it with an earlier start.
 const int ROULETTE_START = 5;
 
 vec3 material_emission(GpuMaterial gm, vec2 uv) {
@@ -743,7 +743,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   // lane is active, so with a loop per sample every sample would cost the longest path of the
   // group. Starting at once keeps lanes busy where paths differ much in length (closed rooms);
   // where they are short and alike (open scenes) starting together pays the start-up code once
-  // per group and keeps the group's rays coherent (u_restart_together; bench/THROUGHPUT.md).
+  // per group and keeps the group's rays coherent (u_restart_together; bench/reports/THROUGHPUT.md).
   // Each sample is the same (its random numbers, its arithmetic) as when traced alone, and the
   // samples are added in order, so the image does not depend on the policy.
   // The loop's own condition ends it, not a `break` alone: Mesa 25's llvmpipe never ended a
@@ -784,7 +784,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   // ulp of the mean, and when most increments are smaller than that (a pixel of a constant
   // background with a rare brighter sample, late in a long run) they round the same way every
   // time. Plain float32 then drifted such a pixel by 0.1% over 10^5 one-sample passes
-  // (tests/soak, bench/SOAK.md). Kahan's compensated summation (Higham, "Accuracy and
+  // (tests/soak, bench/reports/SOAK.md). Kahan's compensated summation (Higham, "Accuracy and
   // Stability of Numerical Algorithms", 2nd ed., §4.3) keeps what each addition lost in
   // `compensation` and adds it back the next time: the represented mean is mean - compensation
   // (so the deviations, taken from `mean`, are short by finite_count * compensation).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the GPU bench on the GPU machine, from the repository's root there, with what
-# bench/gpu/prepare.sh put into .gpu and .gl (bench/gpu/README.md). Writes bench/GPU.md and
+# bench/gpu/prepare.sh put into .gpu and .gl (bench/gpu/README.md). Writes bench/reports/GPU.md and
 # copies it, with the renders' logs, to $OUT when that is set. Arguments go to gpu_bench.py.
 # `--local` first: a check on the machine that prepared it (no packages unpacked over /, no
 # wheels installed; bench/.venv's Python), e.g. `bash bench/gpu/device.sh --local --dry`.
@@ -29,7 +29,7 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader || true
 "$PY" bench/gpu/gpu_bench.py --glint .gpu/glint "$@" 2>&1 | tee /tmp/gpu_bench.log
 rc=${PIPESTATUS[0]}
 if [ -n "${OUT:-}" ]; then
-  cp bench/GPU.md "$OUT/" 2>/dev/null
+  cp bench/reports/GPU.md "$OUT/" 2>/dev/null
   cp /tmp/gpu_bench.log "$OUT/"
 fi
 exit "$rc"

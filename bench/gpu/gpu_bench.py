@@ -4,7 +4,7 @@ bounces) and the Cornell box (bench/scenes/cornell.glint) at 1920x1080, each tra
 (`--backend fragment` and `--backend compute` when the CLI has them), samples per second; then
 the time to relMSE 1e-3 of Glint and, when the mitsuba package is importable, of Mitsuba 3
 (`cuda_ad_rgb`) on the scenes it models the same way, each against its own converged image.
-Writes bench/GPU.md (GPU, driver, date, the tables).
+Writes bench/reports/GPU.md (GPU, driver, date, the tables).
 
     python3 bench/gpu/gpu_bench.py                      # on the GPU machine (bench/gpu/README.md)
     python3 bench/gpu/gpu_bench.py --dry --out /tmp/GPU.md   # end-to-end check on llvmpipe,
@@ -27,7 +27,7 @@ sys.dont_write_bytecode = True
 HERE = os.path.dirname(os.path.abspath(__file__))
 BENCH = os.path.dirname(HERE)
 ROOT = os.path.dirname(BENCH)
-sys.path.insert(0, BENCH)
+sys.path.insert(0, os.path.join(BENCH, "tools"))
 
 import numpy as np  # noqa: E402
 
@@ -47,7 +47,7 @@ def log(msg):
 
 
 def relmse(x, r):
-    """As renderer/image_metrics.h (and bench/metrics.py): mean of (x - r)^2 / (r^2 + 0.01)."""
+    """As renderer/image_metrics.h (and bench/tools/metrics.py): mean of (x - r)^2 / (r^2 + 0.01)."""
     x, r = x.astype(np.float64), r.astype(np.float64)
     return float(np.mean((x - r) ** 2 / (r * r + 0.01)))
 
@@ -142,7 +142,7 @@ def glint_race(glint, name, project, width, height, backend, rate, ref_seconds, 
 def mitsuba_available(variant):
     """(mitsuba module, None) when `variant` can be set, else (None, why)."""
     if variant.startswith("llvm"):
-        # Before Dr.Jit loads: a libLLVM that this Dr.Jit accepts (bench/mitsuba_export.py);
+        # Before Dr.Jit loads: a libLLVM that this Dr.Jit accepts (bench/tools/mitsuba_export.py);
         # with none, Dr.Jit would abort the process in its first kernel.
         if mx.choose_variant(log)[0] != variant:
             return None, (f"no libLLVM that this Dr.Jit accepts for {variant} "
@@ -271,11 +271,11 @@ def main():
     ap.add_argument("--target", type=float, default=1e-3)
     ap.add_argument("--variant", default="cuda_ad_rgb", help="Mitsuba variant (default cuda_ad_rgb)")
     ap.add_argument("--mitsuba-samplers", default="independent,orthogonal",
-                    help="comma-separated (bench/RESULTS.md says which low-discrepancy one wins)")
+                    help="comma-separated (bench/reports/RESULTS.md says which low-discrepancy one wins)")
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--dry", action="store_true",
                     help="small end-to-end check (llvmpipe here): 64x36, short budgets, llvm_ad_rgb")
-    ap.add_argument("--out", default=os.path.join(BENCH, "GPU.md"))
+    ap.add_argument("--out", default=os.path.join(BENCH, "reports", "GPU.md"))
     ap.add_argument("--work", default=os.path.join(ROOT, "build-bench", "gpu"))
     a = ap.parse_args()
     if a.dry:
@@ -311,7 +311,7 @@ def main():
             log(f"mitsuba: {mitsuba_note}")
         else:
             mitsuba_note = f"Mitsuba {mi.__version__}, variant `{a.variant}`, `path` integrator " \
-                           f"(bench/mitsuba_export.py), passes of at most {MITSUBA_PASS_SPP} spp"
+                           f"(bench/tools/mitsuba_export.py), passes of at most {MITSUBA_PASS_SPP} spp"
             for name, project in SCENES:
                 ref = None
                 for sampler in a.mitsuba_samplers.split(","):

@@ -1,4 +1,4 @@
-// The materials of docs/DESIGN.md §4 (LittleCG ch. 5 with Schlick Fresnel, and the refractive
+// The materials of docs/DESIGN.md §7 (LittleCG ch. 5 with Schlick Fresnel, and the refractive
 // dielectric of dielectric.glsl): evaluation, sampling and pdf, consistent with each other. All
 // directions are unit vectors in world space; n is the shading normal already flipped to the
 // side of wo. eval returns f |n.wi|. For the refractive type, `ior` is the relative index eta of

@@ -1,4 +1,4 @@
-// The refractive material of docs/DESIGN.md §4: one interface between two dielectrics, with
+// The refractive material of docs/DESIGN.md §7: one interface between two dielectrics, with
 // the exact Fresnel reflectance of unpolarised light, Snell's law and total internal
 // reflection; smooth (delta lobes) or rough (GGX reflection and transmission, Walter et al.
 // 2007, "Microfacet Models for Refraction through Rough Surfaces", sampled from the visible

@@ -1,4 +1,4 @@
-// Importance sampling of the lat-long environment (docs/DESIGN.md §3) from the tables that
+// Importance sampling of the lat-long environment (docs/DESIGN.md §6) from the tables that
 // renderer/environment_distribution.h builds: a marginal CDF over the rows and one conditional
 // CDF per row, piecewise constant in (u, v) and proportional to the texels' filtered luminance
 // times sin(theta). Needs common.glsl and mapping.glsl.

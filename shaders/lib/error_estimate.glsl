@@ -1,4 +1,4 @@
-// A pixel's estimated relMSE without a reference (docs/DESIGN.md §2), the definition of
+// A pixel's estimated relMSE without a reference (docs/DESIGN.md §4.1), the definition of
 // renderer/image_metrics.h with its epsilon 0.01: the variance of the pixel's mean,
 // M2 / (n (n - 1)) = variance / (n - 1) for the mean squared deviation `variance` of n finite
 // samples, over mean^2 + 0.01, averaged over the three channels. With fewer than two finite

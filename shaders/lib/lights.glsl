@@ -107,7 +107,7 @@ float quad_point_pdf(vec3 p, vec3 v0, vec3 m, float total_area, vec3 y) {
   return plane_point_pdf(p, v0, normalize(m), total_area, y);
 }
 
-// The quad (p0, p1, p2, p3) is the triangles (p0, p1, p2) and (p1, p3, p2) (docs/DESIGN.md §3): a
+// The quad (p0, p1, p2, p3) is the triangles (p0, p1, p2) and (p1, p3, p2) (docs/DESIGN.md §6): a
 // triangle is chosen in proportion to its area, then a point uniformly inside it
 // (b0 = 1 - sqrt(u0); Turk 1990). Emission leaves both sides.
 LightSample sample_quad_light(vec3 p, vec3 p0, vec3 p1, vec3 p2, vec3 p3, vec2 u) {

@@ -1,4 +1,4 @@
-// Texture-coordinate conventions of docs/DESIGN.md §3 and bilinear, repeating texel look-ups.
+// Texture-coordinate conventions of docs/DESIGN.md §6 and bilinear, repeating texel look-ups.
 #ifndef GLINT_MAPPING_GLSL
 #define GLINT_MAPPING_GLSL
 

@@ -1,4 +1,4 @@
-// The CI-sized soak (tests/soak/soak.h; the long run is bench/SOAK.md): the Cornell box at 8x8,
+// The CI-sized soak (tests/soak/soak.h; the long run is bench/reports/SOAK.md): the Cornell box at 8x8,
 // 700 frames of edits and 2000 frames of accumulation with the editor's per-frame calls.
 #include <cstdio>
 #include <cstring>
@@ -63,7 +63,7 @@ TEST(Soak, NoGrowthNoDrift) {
 // pixel's samples are mostly one value with a rare other one, and late in a run most of its
 // increments are below half an ulp of its mean. 40000 one-sample passes must equal the same
 // samples in passes of 1000 within kStatedPrecision (1e-4) in every pixel and region. Measured:
-// the running mean without Kahan compensation drifted a pixel by 2.9e-4 here (bench/SOAK.md);
+// the running mean without Kahan compensation drifted a pixel by 2.9e-4 here (bench/reports/SOAK.md);
 // with it, the two are identical.
 TEST(Soak, LongAccumulationOfEdgePixelsDoesNotDrift) {
   test::ensure_gl_context();

@@ -111,7 +111,7 @@ int64_t rss_growth_bound_kib(const SoakReport& report);
 
 std::string format_report(const SoakConfig& config, const SoakReport& report);
 
-// The finest precision bench/RESULTS.md states for a bias (the standard error of the
+// The finest precision bench/reports/RESULTS.md states for a bias (the standard error of the
 // white-furnace and huge-sphere rows, 0.01%): accumulation drift must stay below it.
 constexpr double kStatedPrecision = 1e-4;
 

@@ -1,4 +1,4 @@
-// glint-soak: the long headless run of tests/soak/soak.h (bench/SOAK.md). Exit code 0 when every
+// glint-soak: the long headless run of tests/soak/soak.h (bench/reports/SOAK.md). Exit code 0 when every
 // check passed, 1 when one failed (each is printed), 2 for bad arguments.
 #include <cstdio>
 #include <cstdlib>

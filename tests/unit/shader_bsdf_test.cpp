@@ -1,4 +1,4 @@
-// The materials of docs/DESIGN.md §4 (shaders/lib/bsdf.glsl) in float and double: sampling agrees
+// The materials of docs/DESIGN.md §7 (shaders/lib/bsdf.glsl) in float and double: sampling agrees
 // with eval and pdf, sampled directions follow the pdf (chi-square), the pdf integrates to the
 // valid-sample fraction, white materials do not create energy, reciprocity, the delta lobes,
 // and no NaN or Inf anywhere in the parameter range.
@@ -48,7 +48,7 @@ typename L::SurfaceMaterial material(const MaterialCase& c, dvec3 color) {
   return typename L::SurfaceMaterial{c.type, L::v3(color), R(c.roughness), R(kIor)};
 }
 
-// Schlick's Fresnel written out (docs/DESIGN.md §4).
+// Schlick's Fresnel written out (docs/DESIGN.md §7).
 double schlick(double f0, double cos_theta) { return f0 + (1 - f0) * std::pow(1 - std::abs(cos_theta), 5); }
 double dielectric_f0(double ior) { return std::pow((ior - 1) / (ior + 1), 2); }
 
@@ -194,7 +194,7 @@ std::pair<double, double> glossy_coat_bound(double roughness, double cos_o, Unif
 // (d) White materials do not create energy: the albedo E[weight] (invalid samples count 0,
 // 1e5 samples, standard error from the sample variance) is at most 1 + 4 SE. A white matte
 // surface returns exactly 1 for every sample.
-// Glossy is the exception the model allows (docs/DESIGN.md §4): its base is scaled by
+// Glossy is the exception the model allows (docs/DESIGN.md §7): its base is scaled by
 // 1 - F(n.wo) while its coat reflects with F(h.wi), which varies over the lobe, so the two do
 // not sum to exactly 1 and a white glossy surface can reflect slightly more than it receives
 // (about 1.0008 at roughness 0.2 to 0.3 and n.wo 0.5 to 0.7, in both precisions). Its bound is

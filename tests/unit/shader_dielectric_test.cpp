@@ -1,4 +1,4 @@
-// The refractive material (shaders/lib/dielectric.glsl, docs/DESIGN.md §4) in float and double:
+// The refractive material (shaders/lib/dielectric.glsl, docs/DESIGN.md §7) in float and double:
 // the exact Fresnel term against Walter et al.'s closed form, Snell's law and total internal
 // reflection of the smooth interface, sampling against eval and pdf, sampled directions against
 // the pdf (chi-square) for reflection and transmission on both sides of the interface,

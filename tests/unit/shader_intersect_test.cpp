@@ -1,5 +1,5 @@
 // Ray-sphere and ray-quad intersection of shaders/lib/intersect.glsl and the ray-origin offset
-// of common.glsl, in float and in double (docs/DESIGN.md §3 and §5).
+// of common.glsl, in float and in double (docs/DESIGN.md §6 and §8).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -317,7 +317,7 @@ TYPED_TEST(ShaderIntersect, TriangleHitReturnsBarycentrics) {
   }
 }
 
-// docs/DESIGN.md §3: a quad is the triangles (p0, p1, p2) and (p1, p3, p2), p3 opposite p0, with
+// docs/DESIGN.md §6: a quad is the triangles (p0, p1, p2) and (p1, p3, p2), p3 opposite p0, with
 // texture coordinates interpolated over the triangle that was hit.
 TYPED_TEST(ShaderIntersect, QuadTextureCoordinatesFollowTheDesignConvention) {
   using L = TypeParam;
@@ -409,7 +409,7 @@ TYPED_TEST(ShaderIntersect, QuadDiagonalHasNoCrack) {
   EXPECT_EQ(misses, 0) << "of " << rays << " rays through the shared edge";
 }
 
-// Quads need not be planar (docs/DESIGN.md §3 only rejects zero area): a folded quad can be
+// Quads need not be planar (docs/DESIGN.md §6 only rejects zero area): a folded quad can be
 // crossed twice, and the nearer triangle must win whichever one it is.
 TYPED_TEST(ShaderIntersect, FoldedQuadReturnsTheNearerTriangle) {
   using L = TypeParam;

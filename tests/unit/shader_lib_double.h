@@ -1,6 +1,6 @@
 // The shared shader maths (shaders/lib/*.glsl) compiled as C++ in DOUBLE precision, as
 // glint::gpu_double::*, next to the float build of renderer/shader_lib.h (glint::gpu::*).
-// The tests run the same checks in both precisions (docs/DESIGN.md §5): a failure only in float
+// The tests run the same checks in both precisions (docs/DESIGN.md §8): a failure only in float
 // points at rounding, a failure in both at the maths.
 //
 // How: `float` is #defined to `double` around the #includes, the GLSL vector and matrix names

@@ -1,4 +1,4 @@
-// Texture-coordinate conventions of docs/DESIGN.md §3 (shaders/lib/mapping.glsl): lat-long mapping
+// Texture-coordinate conventions of docs/DESIGN.md §6 (shaders/lib/mapping.glsl): lat-long mapping
 // of directions, the environment's rotation about +Y, and bilinear repeat look-ups.
 #include <gtest/gtest.h>
 
@@ -103,7 +103,7 @@ TYPED_TEST(ShaderMapping, UWrapsIntoHalfOpenRange) {
   EXPECT_NEAR(double(uv.x), 0.5, 4 * L::kEps);
 }
 
-// docs/DESIGN.md §3: the environment is rotated by rotation_deg about +Y in a right-handed world
+// docs/DESIGN.md §6: the environment is rotated by rotation_deg about +Y in a right-handed world
 // (positive angles turn +Z towards +X, so +X goes to -Z). What the unrotated environment shows
 // at direction e appears at R_y(r) e, i.e. looking along d shows the environment's direction
 // R_y(-r) d, whose u is u(d) + r / 2pi. So a rotation by +90 degrees adds 0.25 to u.

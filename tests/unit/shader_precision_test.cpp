@@ -441,7 +441,7 @@ TEST(hard_Intersection, GrazingQuadHitPointsAreAccurate) {
 // Non-rectangular parallelograms (sheared, unequal sides, 1e-2 to 1e2 units, within 10 sizes
 // of the origin, so that float corners resolve the barycentrics to ~1e-6), with affine texture coordinates (uv3 = uv1 + uv2 - uv0: both triangles
 // give the same affine map) and with non-affine ones (uv3 free: each triangle interpolates its
-// own corners, docs/DESIGN.md §3). Reference: the barycentrics of the hit in double against the
+// own corners, docs/DESIGN.md §6). Reference: the barycentrics of the hit in double against the
 // triangle that contains it. Tolerance 1e-4 of the uv range, in float.
 TEST(hard_Texture, ParallelogramTextureCoordinatesFollowTheTriangles) {
   Uniform u(108);

@@ -1,4 +1,4 @@
-// The display transform (shaders/lib/tonemap.glsl, docs/DESIGN.md §3) and the random numbers
+// The display transform (shaders/lib/tonemap.glsl, docs/DESIGN.md §6) and the random numbers
 // (shaders/lib/rng.glsl), in float and double.
 #include <gtest/gtest.h>
 
@@ -20,7 +20,7 @@ template <class L>
 class ShaderRng : public ::testing::Test {};
 TYPED_TEST_SUITE(ShaderRng, Precisions, PrecisionName);
 
-// docs/DESIGN.md §3, written out independently: exposure in stops scales c, then the filmic curve
+// docs/DESIGN.md §6, written out independently: exposure in stops scales c, then the filmic curve
 // f(c) = (0.9c^2 + 0.02c) / (0.87c^2 + 0.35c + 0.14) (or nothing for linear), then a clamp to
 // [0, 1] for display, then gamma c^(1/2.2). Negative input is black.
 double reference_tonemap(double c, double exposure, bool filmic) {

@@ -5,7 +5,7 @@ from the original program's estimator (BSDF sampling only, independent PCG numbe
 roulette, the generic shader with every feature compiled in), at the same sample count and
 seeds. Efficiency is 1 / (relMSE x seconds): for an unbiased estimator relMSE falls as 1/time,
 so the ratio of two efficiencies is the ratio of their relMSE at equal time (Veach 1997, 1.2).
-Before/after: the ladders of the previous committed results (bench/results_before.json, the
+Before/after: the ladders of the previous committed results (bench/reports/results_before.json, the
 program before light and environment sampling on this machine) against the ladders of this run, both fitted in
 log-log and compared at the same time.
 """
@@ -118,7 +118,7 @@ def before_after(before_path, results):
 def before_after_markdown(ba, fmt_s):
     L = ["## Before and after light and environment sampling\n",
          f"Before: the committed results of {ba['date']} (BSDF sampling only, PCG, no roulette, "
-         "one generic shader, GGX normals sampled from D cos), kept in bench/results_before.json. "
+         "one generic shader, GGX normals sampled from D cos), kept in bench/reports/results_before.json. "
          "After: this run's ladders. Both are fitted in log-log (relMSE against trace time) "
          "and compared at t*, the longest time both measured; the target was a ratio "
          "of at least 4 on the small emitter, the Cornell box and the HDR environment.\n",

@@ -1,7 +1,7 @@
 """Samples per second of `glint render`'s trace back ends (the fragment-shader tracer and the
 compute-shader one), when the CLI offers the choice (`--backend fragment|compute|auto`).
 
-Standard library only, so that bench/test_backends.py can test the detection without the
+Standard library only, so that bench/tools/test_backends.py can test the detection without the
 bench's environment.
 """
 import os

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Denoising at equal time, and the denoiser's time per image size (bench/RESULTS.md,
+"""Denoising at equal time, and the denoiser's time per image size (bench/reports/RESULTS.md,
 "Denoising").
 
 For every bench scene (bench/scenes/*.glint), against a reference of Glint itself at --ref-spp
-(seed 1000001, as bench/run.py makes it):
+(seed 1000001, as bench/tools/run.py makes it):
   - `glint render --spp N --denoise` for each N of --spp: its time is the tracing time (the AOV
     pass included) plus the denoiser's, both as glint prints them;
   - the raw render of the same total time (`glint render --time T`, same seed), and the noisy
@@ -15,7 +15,7 @@ denoiser's wall time as glint prints it (a fresh filter each run: the set-up is 
 Denoising is biased: its error does not fall to zero with more samples, and these tables say
 nothing about how close a denoised image is to the truth beyond the reference's own noise.
 
-    bench/.venv/bin/python bench/denoise.py --glint build/glint
+    bench/.venv/bin/python bench/tools/denoise.py --glint build/glint
 """
 import argparse
 import glob
@@ -32,7 +32,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import metrics  # noqa: E402
 import mitsuba_export as mx  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 REF_SEED = 1000001
 WROTE = re.compile(r"wrote .* \((\d+)x(\d+), (\d+) spp, ([0-9.]+) s, ([0-9.]+) spp/s")
 DENOISED = re.compile(r"denoised \(biased\) with Open Image Denoise on the (\w+) in ([0-9.]+) s")
@@ -73,7 +73,7 @@ def errors(img, ref):
 
 
 def markdown(result):
-    """The tables of bench/RESULTS.md, "Denoising", from the JSON this script writes."""
+    """The tables of bench/reports/RESULTS.md, "Denoising", from the JSON this script writes."""
     L = [f"Equal time, {result['width']} px wide, seed {result['seed']}, against Glint at "
          f"{result['ref_spp']} spp. Time = tracing (AOV pass included) + denoising, as glint "
          "prints them; the raw render ran `--time` of that total (its last pass may overrun it).", "",
@@ -103,7 +103,7 @@ def main():
     ap.add_argument("--sizes", nargs="*", default=["256x256", "512x512", "1920x1080"])
     ap.add_argument("--timing-scene", default=os.path.join(ROOT, "bench", "scenes", "cornell.glint"))
     ap.add_argument("--scenes", nargs="*", default=None, help="default: bench/scenes/*.glint")
-    ap.add_argument("--json", default=os.path.join(ROOT, "bench", "denoise_results.json"))
+    ap.add_argument("--json", default=os.path.join(ROOT, "bench", "reports", "denoise_results.json"))
     ap.add_argument("--markdown", metavar="JSON", help="print the tables of an earlier run and exit")
     a = ap.parse_args()
     if a.markdown:

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Tests bench/race.py: times to error inside, below and past a ladder, and the marks that the
+"""Tests bench/tools/race.py: times to error inside, below and past a ladder, and the marks that the
 ratios inherit from them (standard library only; the ctest bench.race runs it).
 
-    python3 bench/test_race.py
+    python3 bench/tools/test_race.py
 """
 import math
 import os

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Fragment against compute on this machine (bench/THROUGHPUT.md, "Fragment against compute on
+# Fragment against compute on this machine (bench/reports/THROUGHPUT.md, "Fragment against compute on
 # llvmpipe"): `glint render --backend ...` at 256x256, variants interleaved, ROUNDS rounds; prints
-# one line per run (variant, spp/s) and the medians. Usage: bench/backends.sh GLINT PROJECT [SPP] [ROUNDS]
+# one line per run (variant, spp/s) and the medians. Usage: bench/tools/backends.sh GLINT PROJECT [SPP] [ROUNDS]
 set -euo pipefail
 glint=$1 project=$2 spp=${3:-32} rounds=${4:-5}
 out=$(mktemp -d)

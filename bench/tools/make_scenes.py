@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the bench scenes, bench/scenes/*.glint (Glint project format version 1).
 
-Run by bench/run.py before every benchmark (the files are committed too, so they can be opened
+Run by bench/tools/run.py before every benchmark (the files are committed too, so they can be opened
 in the editor). Only the standard library is used.
 
 Environments: by default the two scenes lit by an HDR map use the sky that the project generates
@@ -15,9 +15,9 @@ import os
 import re
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
-SCENES = os.path.join(HERE, "scenes")
+HERE = os.path.dirname(os.path.abspath(__file__))  # bench/tools
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SCENES = os.path.join(os.path.dirname(HERE), "scenes")
 GENERATED_SKY = os.path.join(ROOT, "projects", "assets", "sky.hdr")
 # Scene -> the real HDR map it uses with --assets DIR.
 HDR_MAPS = {"roughness_ladder": "poly_haven_studio_1k.hdr", "env_dof": "hangar_interior_1k.hdr"}

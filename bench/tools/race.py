@@ -21,7 +21,7 @@ TAIL_RUNGS = 4  # the rungs fitted for an extrapolation (32 to 256 spp of a 1-25
 
 def _fit(x, y):
     """log y = a + b log x by least squares over the finite positive points; (a, b) or None.
-    (Plain Python, so that bench/test_race.py needs no numpy.)"""
+    (Plain Python, so that bench/tools/test_race.py needs no numpy.)"""
     pts = [(math.log(u), math.log(v)) for u, v in zip(x, y)
            if u > 0 and v > 0 and math.isfinite(u) and math.isfinite(v)]
     if len(pts) < 2:

@@ -2,7 +2,7 @@
 """Glint project (.glint, format version 1) -> Mitsuba 3 scene dictionary (mi.load_dict).
 
 Only scenes whose parts Mitsuba models the same way are exported; anything else raises
-Unsupported with the reasons. What maps, and how (each checked by bench/run.py's convention
+Unsupported with the reasons. What maps, and how (each checked by bench/tools/run.py's convention
 test or by the Cornell/furnace comparisons in RESULTS.md):
 
 - matte            -> twosided(diffuse)          (Glint shades both sides of every surface)
@@ -41,7 +41,7 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
                       look_at(position, target, up), near clip 1e-6 of the scene size.
 - film             -> hdrfilm with a box filter of radius 0.5 (Glint averages uniformly
                       jittered samples inside each pixel), linear float RGB.
-- integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 3), Russian roulette
+- integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 6), Russian roulette
                       from depth 5 as Mitsuba's default (unbiased; Glint has none).
 
 Refused: glossy and transparent materials, rough or non-white mirrors, refractive materials
@@ -101,7 +101,7 @@ def llvm_candidates():
     c = []
     if os.environ.get("DRJIT_LIBLLVM_PATH"):
         c.append(os.environ["DRJIT_LIBLLVM_PATH"])
-    c += sorted(glob.glob(os.path.join(here, ".venv", "llvm", "usr", "lib", "*", "libLLVM*.so*")),
+    c += sorted(glob.glob(os.path.join(here, "..", ".venv", "llvm", "usr", "lib", "*", "libLLVM*.so*")),
                 reverse=True)
     c += sorted(glob.glob("/usr/lib/*/libLLVM-*.so*") + glob.glob("/usr/lib/llvm-*/lib/libLLVM*.so*"),
                 key=lambda p: [int(x) for x in __import__("re").findall(r"\d+", os.path.basename(p))][:1] or [0],

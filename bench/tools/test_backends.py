@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Tests bench/backends.py's detection and table against stand-ins for `glint`: one whose
+"""Tests bench/tools/backends.py's detection and table against stand-ins for `glint`: one whose
 `render --help` has no --backend (the table is left out, with the note), one whose help has it
 and whose renders print the CLI's "wrote" line (both back ends are raced, interleaved).
 
-    python3 bench/test_backends.py        (the ctest bench.backends runs it)
+    python3 bench/tools/test_backends.py        (the ctest bench.backends runs it)
 """
 import os
 import stat

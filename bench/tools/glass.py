@@ -2,14 +2,14 @@
 """The solid-glass scene (bench/scenes/glass.glint: a smooth and a rough refractive ball in the
 Cornell box) alone against Mitsuba 3, at a small size so that it runs in minutes: the bias of
 Glint's converged image against Mitsuba's (mean luminance, with its standard error from the seed
-spread of both ladders scaled to the reference sample counts, as bench/run.py computes it), and
-the time to relMSE 1e-2 of each renderer against its own converged image (bench/race.py's
+spread of both ladders scaled to the reference sample counts, as bench/tools/run.py computes it), and
+the time to relMSE 1e-2 of each renderer against its own converged image (bench/tools/race.py's
 log-log fit of mean relMSE against trace time over `--seeds` seeds).
 
 The full bench (bench/run.sh) runs the same scene with its other scenes; this script is the
-quick look for the glass material. It prints a Markdown section for bench/RESULTS.md.
+quick look for the glass material. It prints a Markdown section for bench/reports/RESULTS.md.
 
-Usage: bench/.venv/bin/python bench/glass.py [--glint build/glint --width 64 --ref-spp 4096
+Usage: bench/.venv/bin/python bench/tools/glass.py [--glint build/glint --width 64 --ref-spp 4096
        --max-spp 256 --seeds 3 --work build-bench/glass]
 """
 import argparse
@@ -37,7 +37,7 @@ def main():
     cfg = dict(width=a.width, ref_spp=a.ref_spp, max_spp=a.max_spp, seeds=a.seeds,
                mitsuba_ref_spp=a.ref_spp, mitsuba_max_spp=a.max_spp)
     run.make_scenes.main()
-    project = os.path.join(HERE, "scenes", "glass.glint")
+    project = os.path.join(HERE, "..", "scenes", "glass.glint")
     variant, _ = run.ensure_llvm(False)
     mi = mx._mitsuba()
     mi.set_log_level(mi.LogLevel.Error)

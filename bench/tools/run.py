@@ -12,7 +12,7 @@ For each bench scene (bench/scenes/*.glint, written by make_scenes.py):
   3. for the scenes the exporter accepts, Mitsuba 3 (path integrator, same resolution, CPU):
      a converged image (--mitsuba-ref-spp) for the bias of Glint's reference against it, and
      its own 1, 2, 4, ... --mitsuba-max-spp ladder for the equal-time error ratio;
-  4. bench/RESULTS.md with log-log plots, fitted slopes, the time to reach relMSE 1e-1, 1e-2
+  4. bench/reports/RESULTS.md with log-log plots, fitted slopes, the time to reach relMSE 1e-1, 1e-2
      and 1e-3, samples per second, and the Mitsuba comparison.
 """
 import argparse
@@ -31,8 +31,10 @@ import tempfile
 import time
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+HERE = os.path.dirname(os.path.abspath(__file__))  # bench/tools
+BENCH = os.path.dirname(HERE)
+REPORTS = os.path.join(BENCH, "reports")
+ROOT = os.path.dirname(BENCH)
 sys.path.insert(0, HERE)
 
 import numpy as np  # noqa: E402
@@ -57,10 +59,10 @@ FULL = dict(width=128, max_spp=256, ref_spp=4096, seeds=3, mitsuba_ref_spp=4096,
 QUICK = dict(width=32, max_spp=16, ref_spp=256, seeds=3, mitsuba_ref_spp=256, mitsuba_max_spp=16,
              ablation_spp=4, ablation_seeds=1, backend_spp=4, backend_repeats=1)
 # The per-sample gain of Glint's Sobol sampler over PCG on the direct-light Cornell box
-# (bench/qmc_gain.py; Burley 2020, JCGT 9(4), Fig. 1 reports about 12x in RMSE at 16 spp).
+# (bench/tools/qmc_gain.py; Burley 2020, JCGT 9(4), Fig. 1 reports about 12x in RMSE at 16 spp).
 QMC_ARGS = {"full": ["--ref-spp", "4096", "--seeds", "12", "--spp", "4", "16", "64"],
             "quick": ["--ref-spp", "256", "--seeds", "3", "--spp", "4", "16", "--size", "32"]}
-# Sample counts of the equal-spp trial of Mitsuba's samplers (bench/mitsuba_samplers.py).
+# Sample counts of the equal-spp trial of Mitsuba's samplers (bench/tools/mitsuba_samplers.py).
 TRIAL_SPP = {"full": (16, 64), "quick": (4, 8)}
 
 
@@ -113,7 +115,7 @@ def fit_eval(fit, x):
 
 
 def time_to(summary, target):
-    """The time to `target` as bench/race.py reads it from a ladder, as text: interpolated
+    """The time to `target` as bench/tools/race.py reads it from a ladder, as text: interpolated
     between the rungs around it, "<= first rung", or past the last rung "not reached" with the
     extrapolation of the top rungs' fit."""
     t, mark = race.time_to(summary, target)
@@ -333,7 +335,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
              "the Mitsuba section's job); the reference's own noise adds about relMSE(ladder "
              f"top) / {cfg['ref_spp'] // cfg['max_spp']} to every point")
     L.append("- Glint renders with its default sampler (Owen-scrambled Sobol); the error per sample "
-             "of Sobol against PCG at equal spp is measured by bench/qmc_gain.py (bench/SAMPLER.md)\n")
+             "of Sobol against PCG at equal spp is measured by bench/tools/qmc_gain.py (bench/reports/SAMPLER.md)\n")
     L.extend(kept_sections(os.path.join(out_dir, f"{prefix}RESULTS.md")))
     if results_extra.get("race") is not None:
         L.append(race.markdown(results_extra["race"], results_extra["trial"]["winner"], fmt_s))
@@ -341,7 +343,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
     if results_extra.get("qmc"):
         q = results_extra["qmc"]
         L.append("## Glint's sampler at equal spp: Sobol (the default) against PCG\n")
-        L.append(f"`{q['command']}` (details, layout trials and tests in bench/SAMPLER.md): the "
+        L.append(f"`{q['command']}` (details, layout trials and tests in bench/reports/SAMPLER.md): the "
                  "Cornell box of projects/ with every material matte and max_bounces 1 (direct "
                  "light, the case of Burley 2020, \"Practical Hash-based Owen Scrambling\", JCGT "
                  "9(4), Fig. 1, which reports about 12x lower RMSE at 16 spp), RMSE against a "
@@ -372,7 +374,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
                  f"{s['relmse'][-1]:.3g} | {np.mean([x['relmse_trimmed'] for x in top]):.3g} | "
                  f"{s['flip'][-1]:.3g} | " + " | ".join(tt) + " |")
     L.append("\nTimes to error are read from the ladder of mean relMSE against time as the race "
-             "reads them (bench/race.py): interpolated (log-log) between the two rungs around the "
+             "reads them (bench/tools/race.py): interpolated (log-log) between the two rungs around the "
              f"target; \"not reached\" gives in brackets the extrapolation of a log-log fit of the "
              f"last {race.TAIL_RUNGS} rungs. The slopes are fits of the whole ladder. Samples per "
              "second are at the largest sample count.\n")
@@ -402,7 +404,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
     if results_extra.get("ablation"):
         L.append(ablation.markdown(results_extra["ablation"], cfg))
     L.append("## Independent reference: Mitsuba 3\n")
-    L.append(f"Exported by `bench/mitsuba_export.py`; Mitsuba's `path` integrator (max_depth = "
+    L.append(f"Exported by `bench/tools/mitsuba_export.py`; Mitsuba's `path` integrator (max_depth = "
              f"max_bounces + 1) on the CPU (`{env['variant']}`), Glint on {env['gl_short']}. "
              "Bias: mean-luminance difference of Glint's converged image against Mitsuba's "
              "(± one standard error from the seed spread), and relMSE between the two converged "
@@ -449,7 +451,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
                  "llvmpipe: " + "; ".join(tput) + ". The equal-time ratio is the product of the "
                  "two; where it is above 1, most of it is throughput on this CPU. How far Glint's "
                  "shader is from a bare path tracer on the same driver, and where its time goes: "
-                 "bench/THROUGHPUT.md.\n")
+                 "bench/reports/THROUGHPUT.md.\n")
     if refused:
         L.append("Not exported (Mitsuba would not model them identically):\n")
         for name, reasons in refused:
@@ -483,7 +485,7 @@ def write_results(results, conv, cfg, env, out_dir, prefix, plot_files, command,
         names = list(horizon["worst"])
         L.append("### Huge-sphere floor against the analytic value\n")
         L.append("Far from the small spheres the floor's radiance is exactly albedo x sky (see "
-                 "`bench/horizon_check.py`); a pixel's expected value is that, mixed with the sky "
+                 "`bench/tools/horizon_check.py`); a pixel's expected value is that, mixed with the sky "
                  "by the fraction of the pixel covered by floor (computed in double). Green "
                  f"channel, mean over the {horizon['pixels']} pixels this applies to, per image row "
                  "that shows floor:\n")
@@ -540,7 +542,7 @@ DIFFERENCES = """\
   llvm 0.19-0.26), consistent with rays leaving the floor re-hitting it. `scalar_rgb` (which
   solves the sphere quadratic in double) is closer but still loses light in the floor rows next
   to the horizon: rendered by hand (GLINT_BENCH_MITSUBA_VARIANT=scalar_rgb bash bench/run.sh
-  --scenes huge_sphere_floor, 128x72, 1024 spp) and checked with `bench/horizon_check.py`, its
+  --scenes huge_sphere_floor, 128x72, 1024 spp) and checked with `bench/tools/horizon_check.py`, its
   three rows below the horizon were 9%, 22% and 18% darker than the analytic value while
   Glint's were within 1e-4 of it; that accounts for the +1.08% mean bias it showed against
   Glint. So the bias row of this scene measures Mitsuba's sphere, not Glint; the analytic
@@ -565,7 +567,7 @@ def machine_info(gl):
     return cpu
 
 
-# Sections of RESULTS.md that other scripts write (bench/denoise.py's tables): a rewrite by
+# Sections of RESULTS.md that other scripts write (bench/tools/denoise.py's tables): a rewrite by
 # this script keeps them as they are, after the header.
 KEPT_SECTIONS = ("## Denoising",)
 
@@ -596,7 +598,7 @@ def ensure_llvm(allow_download):
         return variant, path
     # No system libLLVM works with this Dr.Jit (Debian 12's LLVM 15 aborts on llvm.minimum):
     # fetch Debian's libllvm19 package (no installation: unpacked into the git-ignored venv).
-    dest = os.path.join(HERE, ".venv", "llvm")
+    dest = os.path.join(BENCH, ".venv", "llvm")
     log("  fetching Debian's libllvm19 into bench/.venv/llvm (apt-get download; nothing installed)")
     tmp = tempfile.mkdtemp()
     try:
@@ -617,7 +619,7 @@ def main():
     ap.add_argument("--quick", action="store_true",
                     help="tiny sizes and sample counts (validation; a few minutes); writes to build-bench/quick/")
     ap.add_argument("--scenes", nargs="+", choices=SCENES, default=SCENES)
-    ap.add_argument("--out", help="folder for RESULTS.md and plots (default: bench/, or build-bench/quick/ with --quick)")
+    ap.add_argument("--out", help="folder for RESULTS.md and plots (default: bench/reports/, or build-bench/quick/ with --quick)")
     ap.add_argument("--work", help="scratch folder for renders (default: build-bench/work or build-bench/quick/work)")
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "glint"))
     ap.add_argument("--assets", metavar="DIR",
@@ -627,7 +629,7 @@ def main():
         ap.add_argument("--" + k.replace("_", "-"), type=int, help=f"(full {v}, quick {QUICK[k]})")
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--no-ablation", action="store_true", help="skip the per-technique renders")
-    ap.add_argument("--no-qmc", action="store_true", help="skip the Sobol-against-PCG table (bench/qmc_gain.py)")
+    ap.add_argument("--no-qmc", action="store_true", help="skip the Sobol-against-PCG table (bench/tools/qmc_gain.py)")
     ap.add_argument("--no-llvm-download", action="store_true",
                     help="do not fetch libllvm19 when no system libLLVM works (use scalar_rgb)")
     a = ap.parse_args()
@@ -636,7 +638,7 @@ def main():
         if getattr(a, k) is not None:
             cfg[k] = getattr(a, k)
     cfg["quick"] = a.quick
-    out_dir = a.out or (os.path.join(ROOT, "build-bench", "quick") if a.quick else HERE)
+    out_dir = a.out or (os.path.join(ROOT, "build-bench", "quick") if a.quick else REPORTS)
     work = a.work or os.path.join(out_dir if a.quick else os.path.join(ROOT, "build-bench"), "work")
     os.makedirs(out_dir, exist_ok=True)
     os.makedirs(work, exist_ok=True)
@@ -645,7 +647,7 @@ def main():
         sys.exit(f"bench: {glint} not found (bash scripts/build.sh)")
     # The committed scenes use the generated sky; with --assets the scenes are written beside the
     # renders (their environments point into DIR) and bench/scenes is left as committed.
-    scenes_dir = os.path.join(HERE, "scenes")
+    scenes_dir = os.path.join(BENCH, "scenes")
     make_scenes.main()
     if a.assets:
         scenes_dir = os.path.join(work, "scenes-assets")
@@ -717,13 +719,13 @@ def main():
                     results[n]["glint"], results[n]["summary"], sampler=ld, ref_m=ref_m)}
             extra["race"] = race.rows(results, ld)
     if not a.no_qmc:
-        log("sampler gain: bench/qmc_gain.py (Sobol against PCG, direct-light Cornell box)")
+        log("sampler gain: bench/tools/qmc_gain.py (Sobol against PCG, direct-light Cornell box)")
         qargs = QMC_ARGS["quick" if a.quick else "full"] + ["--glint", glint, "--out", os.path.join(work, "qmc")]
         r = subprocess.run([sys.executable, os.path.join(HERE, "qmc_gain.py")] + qargs,
                            capture_output=True, text=True)
         if r.returncode != 0:
-            raise RuntimeError(f"bench/qmc_gain.py failed ({r.returncode}):\n{r.stderr}{r.stdout}")
-        extra["qmc"] = {"command": "python3 bench/qmc_gain.py " + " ".join(QMC_ARGS["quick" if a.quick else "full"]),
+            raise RuntimeError(f"bench/tools/qmc_gain.py failed ({r.returncode}):\n{r.stderr}{r.stdout}")
+        extra["qmc"] = {"command": "python3 bench/tools/qmc_gain.py " + " ".join(QMC_ARGS["quick" if a.quick else "full"]),
                         "output": r.stdout}
         log("  " + r.stdout.strip().splitlines()[-1])
     if backends.available(glint):
@@ -735,7 +737,7 @@ def main():
     else:
         log("back ends: `glint render --help` has no --backend (fragment only; no table)")
     if not a.quick:
-        extra["before_after"] = ablation.before_after(os.path.join(HERE, "results_before.json"), results)
+        extra["before_after"] = ablation.before_after(os.path.join(REPORTS, "results_before.json"), results)
     env["wall"] = fmt_s(time.time() - t_start)
     write_results(results, conv, cfg, env, out_dir, prefix, plot_files, cmd, extra)
     # Raw numbers beside the report, for re-plotting without re-rendering.

@@ -14,8 +14,8 @@ the loop's figures are reported only where one of its samples fits, (max_bounces
 driver every size is valid; --max-loop bounds the sizes the loop is run at (it is slow).
 
 Writes a Markdown table and an SVG plot (no Python packages needed):
-  python3 bench/scale.py                       # bench/SCALING.md, bench/scaling.svg
-  python3 bench/scale.py --sizes 10,1000 --out /tmp/s.md
+  python3 bench/tools/scale.py                       # bench/reports/SCALING.md, bench/reports/scaling.svg
+  python3 bench/tools/scale.py --sizes 10,1000 --out /tmp/s.md
 """
 import argparse
 import math
@@ -27,8 +27,8 @@ import subprocess
 import sys
 import datetime
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+HERE = os.path.dirname(os.path.abspath(__file__))  # bench/tools
+ROOT = os.path.dirname(os.path.dirname(HERE))
 LOOP_LIMIT = 65535
 
 
@@ -171,7 +171,7 @@ def main():
     ap.add_argument("--max-loop", type=int, default=100000, help="largest N the loop is run at (default 1e5)")
     ap.add_argument("--glint", default=os.path.join(ROOT, "build", "glint"), help="the glint executable")
     ap.add_argument("--work", default=os.path.join(ROOT, "build-bench", "scale"), help="scenes and renders")
-    ap.add_argument("--out", default=os.path.join(HERE, "SCALING.md"), help="Markdown report (the SVG goes beside it)")
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "reports", "SCALING.md"), help="Markdown report (the SVG goes beside it)")
     args = ap.parse_args()
     sizes = [int(float(s)) for s in args.sizes.split(",")]
     os.makedirs(args.work, exist_ok=True)
@@ -207,9 +207,9 @@ def main():
     svg_plot(rows, svg)
     fit = fit_log(rows)
     lines = ["# Scaling: plain loop against BVH", "",
-             "Written by `python3 bench/scale.py %s` on %s, %s (%s), %d x %d pixels, %d spp per render, "
+             "Written by `python3 bench/tools/scale.py %s` on %s, %s (%s), %d x %d pixels, %d spp per render, "
              "max_bounces %d, median of %d renders per point. Scenes: N spheres on a grid over a fixed "
-             "floor, shrinking with N, N/100 small quads (`write_scene` in bench/scale.py)."
+             "floor, shrinking with N, N/100 small quads (`write_scene` in bench/tools/scale.py)."
              % (" ".join(sys.argv[1:]), datetime.date.today().isoformat(), device, platform.machine(),
                 args.width, args.width, args.spp, args.bounces, args.repeats), "",
              "Samples per pixel per second are those `glint render` reports (trace passes only). "

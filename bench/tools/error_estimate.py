@@ -2,7 +2,7 @@
 """The error estimate and adaptive sampling on the bench scenes (bench/scenes/*.glint).
 
 Per scene, at a small size so that it runs in a few minutes on llvmpipe:
-  1. a reference: Glint at --ref-spp with a seed no other render uses (as bench/run.py);
+  1. a reference: Glint at --ref-spp with a seed no other render uses (as bench/tools/run.py);
   2. a uniform render to --spp and an adaptive one (`--adaptive`) for the same time, each
      logged with `--reference --log` (true relMSE and estimated_relmse at 1, 2, 4, ... spp,
      with seconds);
@@ -13,7 +13,7 @@ Per scene, at a small size so that it runs in a few minutes on llvmpipe:
      slope of log relMSE against log time over the checkpoints from 16 spp (-1 is Monte Carlo's
      rate; a plateau shows as a slope near 0).
 The output is a Markdown section printed to stdout and the plot written to --plot.
-Usage: bench/error_estimate.py --glint build/glint [--width 48] [--spp 256] [--ref-spp 4096]
+Usage: bench/tools/error_estimate.py --glint build/glint [--width 48] [--spp 256] [--ref-spp 4096]
 """
 import argparse
 import csv
@@ -64,12 +64,12 @@ def at_time(t, e, when):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--glint", default=os.path.join(HERE, "..", "build", "glint"))
+    p.add_argument("--glint", default=os.path.join(HERE, "..", "..", "build", "glint"))
     p.add_argument("--width", type=int, default=48)
     p.add_argument("--spp", type=int, default=256)
     p.add_argument("--ref-spp", type=int, default=4096)
     p.add_argument("--scenes", nargs="*", default=SCENES)
-    p.add_argument("--plot", default=os.path.join(HERE, "error_estimate.png"))
+    p.add_argument("--plot", default=os.path.join(HERE, "..", "reports", "error_estimate.png"))
     a = p.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -81,7 +81,7 @@ def main():
     fig, axes = plt.subplots(math.ceil(len(a.scenes) / cols), cols, figsize=(4 * cols, 3.2 * math.ceil(len(a.scenes) / cols)),
                              squeeze=False)
     for i, name in enumerate(a.scenes):
-        project = os.path.join(HERE, "scenes", name + ".glint")
+        project = os.path.join(HERE, "..", "scenes", name + ".glint")
         ref = os.path.join(work, name + "_ref.exr")
         print(f"{name}: reference {a.ref_spp} spp", file=sys.stderr, flush=True)
         run([a.glint, "render", project, "-o", ref, "--spp", str(a.ref_spp), "--seed", str(REF_SEED),

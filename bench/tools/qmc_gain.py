@@ -2,8 +2,8 @@
 """Per-sample error of the samplers: RMSE of `glint render` at a few samples per pixel against a
 high-spp reference, for `--sampler pcg` and `--sampler sobol`, over several seeds.
 
-    python3 bench/qmc_gain.py                         # direct-light Cornell box (below)
-    python3 bench/qmc_gain.py --project bench/scenes/env_dof.glint --keep-materials \
+    python3 bench/tools/qmc_gain.py                         # direct-light Cornell box (below)
+    python3 bench/tools/qmc_gain.py --project bench/scenes/env_dof.glint --keep-materials \
         --keep-bounces
 
 By default the scene is the Cornell box of projects/ with every material matte (colour and
@@ -26,7 +26,7 @@ import zlib
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def read_exr(path):
