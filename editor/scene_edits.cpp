@@ -7,6 +7,8 @@
 #include <cmath>
 #include <system_error>
 
+#include "renderer/texture_slots.h"
+
 namespace glint {
 namespace {
 
@@ -267,11 +269,9 @@ Selection remove(Scene& scene, Selection what) {
       if (!in_range(scene.textures, what.index)) return what;
       const std::string name = scene.textures[i].name;
       scene.textures.erase(scene.textures.begin() + what.index);
-      for (Material& m : scene.materials) {
-        if (m.color_texture == name) m.color_texture.clear();
-        if (m.emission_texture == name) m.emission_texture.clear();
-        if (m.roughness_texture == name) m.roughness_texture.clear();
-      }
+      for (Material& m : scene.materials)
+        for (const TextureSlot& slot : kTextureSlots)
+          if (m.*slot.member == name) (m.*slot.member).clear();
       return {};
     }
     default: return what;  // the environment and the camera cannot be deleted
@@ -308,11 +308,9 @@ bool rename(Scene& scene, Selection what, const std::string& name) {
         return false;
       const std::string old = scene.textures[i].name;
       scene.textures[i].name = name;
-      for (Material& m : scene.materials) {
-        if (m.color_texture == old) m.color_texture = name;
-        if (m.emission_texture == old) m.emission_texture = name;
-        if (m.roughness_texture == old) m.roughness_texture = name;
-      }
+      for (Material& m : scene.materials)
+        for (const TextureSlot& slot : kTextureSlots)
+          if (m.*slot.member == old) m.*slot.member = name;
       return true;
     }
     default: return false;

@@ -9,6 +9,7 @@
 #include "renderer/image.h"
 #include "renderer/project_file.h"
 #include "renderer/scene_images.h"
+#include "renderer/texture_slots.h"
 
 namespace glint {
 namespace fs = std::filesystem;
@@ -189,11 +190,10 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
         }
         int t = add_texture(doc.scene, path);
         if (purpose == FilePurpose::texture_slot && state.flow.slot_material >= 0 &&
-            state.flow.slot_material < static_cast<int>(doc.scene.materials.size())) {
+            state.flow.slot_material < static_cast<int>(doc.scene.materials.size()) &&
+            state.flow.slot_index >= 0 && state.flow.slot_index < static_cast<int>(kTextureSlots.size())) {
           Material& m = doc.scene.materials[state.flow.slot_material];
-          std::string& slot = state.flow.slot_index == 0 ? m.color_texture
-                              : state.flow.slot_index == 1 ? m.emission_texture : m.roughness_texture;
-          slot = doc.scene.textures[t].name;
+          m.*kTextureSlots[state.flow.slot_index].member = doc.scene.textures[t].name;
         }
         break;
       }

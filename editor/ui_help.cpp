@@ -6,6 +6,7 @@
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
+#include "renderer/texture_slots.h"
 
 namespace glint {
 namespace {
@@ -109,7 +110,7 @@ std::string drop_file(Document& doc, EditorState& state, const std::filesystem::
       return {};
     }
     state.flow.slot_material = material;
-    state.flow.slot_index = 0;
+    state.flow.slot_index = static_cast<int>(texture_slot_index(&Material::color_texture));
     apply_chosen_file(doc, state, FilePurpose::texture_slot, file.string());
     done = "Colour texture of " + doc.scene.materials[material].name + ": " + file.filename().string();
   }

@@ -8,6 +8,7 @@
 #include "editor/ui_context.h"
 #include "editor/ui_tip.h"
 #include "renderer/scene_fields.h"
+#include "renderer/texture_slots.h"
 
 namespace glint {
 namespace {
@@ -71,10 +72,12 @@ void material_combo(Document& doc, std::string& material) {
   }
 }
 
-void texture_slot(Document& doc, EditorState& state, int material, int slot, const char* label) {
-  Material& m = doc.scene.materials[material];
-  std::string& value = slot == 0 ? m.color_texture : slot == 1 ? m.emission_texture : m.roughness_texture;
-  ImGui::PushID(slot);
+// The widgets of one texture slot (renderer/texture_slots.h) of a material.
+void texture_slot(Document& doc, EditorState& state, int material, std::string Material::*member) {
+  const size_t slot = texture_slot_index(member);
+  const TextureSlot& what = kTextureSlots[slot];
+  std::string& value = doc.scene.materials[material].*member;
+  ImGui::PushID(static_cast<int>(slot));
   int t = find_texture(doc.scene, value);
   unsigned thumb = t >= 0 ? state.thumbnails.get(resolve_asset_path(doc.scene, doc.scene.textures[t].path), 64) : 0;
   if (thumb) ImGui::Image(tex_id(thumb), ImVec2(ui_units(32), ui_units(32)));
@@ -82,15 +85,13 @@ void texture_slot(Document& doc, EditorState& state, int material, int slot, con
   ImGui::SameLine();
   ImGui::BeginGroup();
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ui_units(110));
-  name_combo(label, value, doc.scene.textures, true);
-  tip(slot == 0 ? "An image that replaces the colour (its alpha is coverage)."
-      : slot == 1 ? "An image that multiplies the emission."
-                  : "An image whose first channel replaces the roughness.");
+  name_combo(what.label, value, doc.scene.textures, true);
+  tip(what.what);
   const bool file = ImGui::SmallButton("File...");
   tip("Choose an image file for this slot (or drop one on the window).");
   if (file) {
     state.flow.slot_material = material;
-    state.flow.slot_index = slot;
+    state.flow.slot_index = static_cast<int>(slot);
     choose_file(doc, state, FilePurpose::texture_slot);
   }
   ImGui::EndGroup();
@@ -157,7 +158,7 @@ void material_properties(Document& doc, EditorState& state, int i) {
   if (uses_field(m.type, kFieldColour)) {
     ImGui::ColorEdit3("Colour", &m.color.x, ImGuiColorEditFlags_Float);
     tip("Linear RGB colour (albedo, reflectance or tint, see Type).");
-    texture_slot(doc, state, i, 0, "Colour tex");
+    texture_slot(doc, state, i, &Material::color_texture);
   }
   if (uses_field(m.type, kFieldEmission)) {
     ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
@@ -168,12 +169,12 @@ void material_properties(Document& doc, EditorState& state, int i) {
       m.emission *= strength / old;  // scales the colour, keeping its hue
     }
     if (strength > 0) tip("Scales the emission, keeping its hue.");
-    texture_slot(doc, state, i, 1, "Emission tex");
+    texture_slot(doc, state, i, &Material::emission_texture);
   }
   if (uses_field(m.type, kFieldRoughness)) {
     ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
     tip("Microfacet roughness (GGX alpha = roughness^2): 0 is perfectly smooth.");
-    texture_slot(doc, state, i, 2, "Rough. tex");
+    texture_slot(doc, state, i, &Material::roughness_texture);
   }
   if (uses_field(m.type, kFieldIor)) {
     ImGui::DragFloat("IOR", &m.ior, 0.005f, 0.1f, 4.0f, "%.3f", kClamp);

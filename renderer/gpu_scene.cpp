@@ -4,9 +4,12 @@
 #include <cmath>
 
 #include "renderer/quad_shape.h"
+#include "renderer/texture_slots.h"
 
 namespace glint {
 namespace {
+
+static_assert(kTextureSlots.size() <= 4, "GpuMaterial::layers holds four texture layers");
 
 int layer_for(const Scene& scene, const std::string& texture_name, ColorEncoding encoding,
               std::vector<TextureLayer>& layers) {
@@ -84,10 +87,10 @@ PackedScene pack_scene(const Scene& scene, const glm::dvec3& origin) {
     g.color = glm::vec4(m.color, static_cast<float>(static_cast<int>(m.type)));
     g.emission = glm::vec4(m.emission, 0);
     g.params = glm::vec4(m.roughness, m.ior, m.opacity, 0);
-    g.layers = glm::ivec4(layer_for(scene, m.color_texture, ColorEncoding::srgb, packed.layers),
-                          layer_for(scene, m.emission_texture, ColorEncoding::srgb, packed.layers),
-                          layer_for(scene, m.roughness_texture, ColorEncoding::linear, packed.layers),
-                          -1);
+    g.layers = glm::ivec4(-1);
+    for (size_t slot = 0; slot < kTextureSlots.size(); ++slot)
+      g.layers[static_cast<int>(slot)] =
+          layer_for(scene, m.*kTextureSlots[slot].member, kTextureSlots[slot].encoding, packed.layers);
     packed.materials.push_back(g);
   }
   for (const Sphere& s : scene.spheres)

@@ -8,8 +8,10 @@
 #include <cstdlib>
 #include <map>
 #include <numeric>
+#include <type_traits>
 
 #include "renderer/gpu_renderer.h"
+#include "renderer/render_option_fields.h"
 #include "renderer/scene_digest.h"
 #include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
@@ -117,12 +119,14 @@ std::string format_sample_range(const SampleRange& r) {
 uint64_t render_digest(const Scene& scene, const RenderOptions& options) {
   Hasher h;
   h.value(digest_scene(scene).radiance());
-  h.value(options.light_sampling ? 1 : 0);
-  h.value(options.environment_sampling ? 1 : 0);
-  h.value(options.russian_roulette ? 1 : 0);
-  h.value(options.sampler == SamplerKind::sobol ? 1 : 0);
-  h.value(options.clamp);
-  // accel is left out: loop and BVH find the same closest hits (the same image).
+  // The options that change the samples (render_option_fields.h); bools and enums as ints.
+  visit_render_option_fields([&](const auto& f) {
+    if (!f.in_digest()) return;
+    const auto& value = options.*f.member;
+    using M = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<M, bool> || std::is_enum_v<M>) h.value(static_cast<int>(value));
+    else h.value(value);
+  });
   return h.result();
 }
 

@@ -44,7 +44,8 @@ struct PartInfo {
 
 // Everything that decides a render's samples besides size, seed, sampler and range: the scene's
 // radiance digest (renderer/scene_digest.h: values, and each asset file's size and time) and
-// the estimator options. The seed is in it too (also recorded on its own, for messages).
+// the estimator options that change the samples (renderer/render_option_fields.h). The seed is
+// in it too (also recorded on its own, for messages).
 uint64_t render_digest(const Scene& scene, const RenderOptions& options);
 
 PartInfo part_info(const Scene& scene, const RenderOptions& options, int width, int height,

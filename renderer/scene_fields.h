@@ -13,11 +13,14 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
 #include "renderer/material_types.h"
 #include "renderer/scene.h"
+#include "renderer/texture_slots.h"
 
 namespace glint {
 
@@ -226,6 +229,24 @@ template <class T>
 struct IsVector : std::false_type {};
 template <class T>
 struct IsVector<std::vector<T>> : std::true_type {};
+
+// The material fields that name a texture (kTextureRef) are the texture slots of
+// texture_slots.h, with the same keys and in the same order.
+constexpr bool texture_refs_are_the_slots() {
+  size_t slot = 0;
+  bool same = true;
+  FieldTable<Material>::visit([&](const auto& f) {
+    if (!f.has(kTextureRef)) return;
+    if constexpr (std::is_same_v<typename std::decay_t<decltype(f)>::Type, std::string>)
+      same = same && slot < kTextureSlots.size() && f.member == kTextureSlots[slot].member &&
+             std::string_view(f.key) == kTextureSlots[slot].key;
+    else
+      same = false;
+    ++slot;
+  });
+  return same && slot == kTextureSlots.size();
+}
+static_assert(texture_refs_are_the_slots(), "a texture slot of Material is missing from renderer/texture_slots.h");
 
 // A struct's members, one name each: a new member makes the binding fail to compile. The count
 // beside each is that of its table.

@@ -27,5 +27,29 @@ TEST(GpuScene, PacksOneLayerPerTextureAndEncoding) {
   EXPECT_FLOAT_EQ(p.quads[0].normal.z, -1.0f);
 }
 
+// Each texture slot (renderer/texture_slots.h) fills the component of GpuMaterial::layers that
+// shaders/trace_common.glsl reads it from (x colour, y emission, z roughness), decoded as the
+// shader expects (colour and emission sRGB, roughness linear).
+TEST(GpuScene, EachTextureSlotFillsTheLayerTheShaderReadsItFrom) {
+  struct Expected {
+    std::string Material::*member;
+    int component;
+    ColorEncoding encoding;
+  };
+  for (const Expected& e : {Expected{&Material::color_texture, 0, ColorEncoding::srgb},
+                            Expected{&Material::emission_texture, 1, ColorEncoding::srgb},
+                            Expected{&Material::roughness_texture, 2, ColorEncoding::linear}}) {
+    Scene s;
+    s.textures = {{.name = "wood", .path = "wood.png"}};
+    Material m{.name = "m"};
+    m.*e.member = "wood";
+    s.materials = {m};
+    const PackedScene p = pack_scene(s);
+    ASSERT_EQ(p.layers.size(), 1u) << e.component;
+    EXPECT_EQ(p.layers[0].encoding, e.encoding) << e.component;
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(p.materials[0].layers[c], c == e.component ? 0 : -1) << e.component;
+  }
+}
+
 }  // namespace
 }  // namespace glint

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "editor_test_util.h"
 #include "app/render_command.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "tests/temp_dir.h"
 
 namespace glint {
 namespace {

@@ -1,7 +1,8 @@
-// `glint render` and the editor's export where the output cannot be written or the image
-// cannot be held: a full disk fails the command (exit 1, the old image kept), a read-only
-// folder or a name too long fails before rendering, a size beyond the film limits is refused
-// before anything is allocated. Runs the command in-process (it makes its own EGL context).
+// `glint render` where the output cannot be written or the image cannot be held: a full disk
+// fails the command (exit 1, the old image kept), a read-only folder or a name too long fails
+// before rendering, a size beyond the film limits is refused before anything is allocated, by
+// the command and by the renderer. Runs the command in-process (it makes its own EGL context).
+// The editor's export has the same checks (tests/editor/export_output_test.cpp).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -9,15 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "editor/export_job.h"
 #include "app/render_command.h"
-#include "editor_test_util.h"
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
-#include "renderer/scene_validation.h"
 #include "tests/small_tmpfs.h"
+#include "tests/temp_dir.h"
 
 namespace glint {
 namespace {
@@ -98,18 +97,6 @@ TEST(RenderOutput, ReadOnlyFolderFailsBeforeRenderingWithTheReason) {
   EXPECT_NE(run.err.find(out.string() + ": "), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("Read-only file system"), std::string::npos) << run.err;
   EXPECT_EQ(run.err.find(kStartedRendering), std::string::npos) << run.err;
-
-  // The editor's export checks when it starts, before its renderer exists.
-  auto context = HeadlessGLContext::create();
-  ExportSettings settings;
-  settings.width = settings.height = 16;
-  settings.output = out;
-  try {
-    ExportJob job(furnace_scene(), settings);
-    ADD_FAILURE() << "an export to a read-only folder started";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("Read-only file system"), std::string::npos) << e.what();
-  }
 }
 
 // 250 bytes fit NAME_MAX with the fixed-length temporary name; 256 do not, and are refused
@@ -159,17 +146,6 @@ TEST(RenderOutput, CommandLineSizesHaveTheFilmLimits) {
   // At the limit (8192x8192 pixels in all) the size is accepted; 1 spp of 64x8192 renders.
   const Result run = render({project, "-o", out, "--width", "64", "--height", "8192", "--spp", "1"});
   EXPECT_EQ(run.exit_code, 0) << run.err;
-}
-
-// The export has the same limits (validate_export_settings, and ExportJob throws).
-TEST(RenderOutput, ExportSizesHaveTheFilmLimits) {
-  test::TempDir dir;
-  ExportSettings settings;
-  settings.width = 16384;
-  settings.height = 8192;
-  settings.output = dir / "out.png";
-  EXPECT_EQ(validate_export_settings(settings), check_film_size(16384, 8192)->problem);
-  EXPECT_THROW((ExportJob{furnace_scene(), settings}), std::runtime_error);
 }
 
 // The renderer itself refuses a film beyond the limits, whoever asks, before it changes
