@@ -5,11 +5,20 @@
 #include <cstdio>
 #include <string>
 
+#include "renderer/parse_number.h"
+
 namespace glint {
 
 struct UsageError {
   std::string message;
 };
+
+// An integer option's value from lo to hi (renderer/parse_number.h); throws UsageError naming
+// the option and the range.
+inline long parse_integer_option(const std::string& option, const std::string& text, long lo, long hi) {
+  if (const std::optional<long> v = parse_integer(text, lo, hi)) return *v;
+  throw UsageError{integer_expected(option, lo, hi, text)};
+}
 
 // Fills `options` from `parse(argc, argv)` (which throws UsageError) and returns -1 to go on,
 // or the exit code once the help or a usage error has been printed.

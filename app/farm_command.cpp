@@ -16,6 +16,7 @@
 #include "app/run_program.h"
 #include "app/slurm_syntax.h"
 #include "renderer/atomic_file.h"
+#include "renderer/image.h"
 #include "renderer/project_file.h"
 #include "renderer/render_part.h"
 
@@ -67,17 +68,6 @@ struct Options {
   bool resume = false, dry_run = false;
 };
 
-long parse_count(const std::string& option, const std::string& text, long lo, long hi) {
-  try {
-    size_t used = 0;
-    const long v = std::stol(text, &used);
-    if (used == text.size() && v >= lo && v <= hi) return v;
-  } catch (const std::exception&) {
-  }
-  throw UsageError{option + " expects an integer from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                   ", got '" + text + "'"};
-}
-
 // A path that goes into a script: one line, and (the farm folder) no backslash.
 void check_script_path(const std::string& what, const std::string& path) {
   if (const auto problem = script_text_problem(path)) throw UsageError{what + " " + *problem};
@@ -96,15 +86,15 @@ Options parse(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "-o" || a == "--output") o.plan.output = value();
-    else if (a == "--spp") o.plan.spp = parse_count(a, value(), 1, 1L << 32), spp = true;
-    else if (a == "--parts") o.plan.parts = static_cast<int>(parse_count(a, value(), 1, kMaxFarmParts)), parts = true;
-    else if (a == "--width") o.plan.width = parse_count(a, value(), 1, 16384);
-    else if (a == "--height") o.plan.height = parse_count(a, value(), 1, 16384);
+    else if (a == "--spp") o.plan.spp = parse_integer_option(a, value(), 1, 1L << 32), spp = true;
+    else if (a == "--parts") o.plan.parts = static_cast<int>(parse_integer_option(a, value(), 1, kMaxFarmParts)), parts = true;
+    else if (a == "--width") o.plan.width = parse_integer_option(a, value(), 1, 16384);
+    else if (a == "--height") o.plan.height = parse_integer_option(a, value(), 1, 16384);
     else if (a == "--partition") {
       o.plan.partition = value();
       if (const auto problem = partition_problem(o.plan.partition))
         throw UsageError{"--partition '" + o.plan.partition + "': " + *problem};
-    } else if (a == "--gpus-per-task") o.plan.gpus_per_task = static_cast<int>(parse_count(a, value(), 1, kMaxGpusPerTask));
+    } else if (a == "--gpus-per-task") o.plan.gpus_per_task = static_cast<int>(parse_integer_option(a, value(), 1, kMaxGpusPerTask));
     else if (a == "--resume") o.resume = true;
     else if (a == "--dry-run") o.dry_run = true;
     else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
@@ -112,9 +102,8 @@ Options parse(int argc, char** argv) {
     else throw UsageError{"unexpected argument '" + a + "'"};
   }
   if (o.plan.output.empty()) throw UsageError{"no output given (-o OUT.exr|.png|.hdr)"};
-  const std::string ext = fs::path(o.plan.output).extension().string();
-  if (ext != ".png" && ext != ".hdr" && ext != ".exr")
-    throw UsageError{"output '" + o.plan.output + "' must end in .png, .hdr or .exr"};
+  if (const auto problem = output_format_problem(o.plan.output))
+    throw UsageError{"output '" + o.plan.output + "' " + *problem};
   check_script_path("-o", o.plan.output);
   if (const auto problem = farm_folder_problem(farm_folder(o.plan.output)))
     throw UsageError{"-o: the farm folder " + farm_folder(o.plan.output).string() + " " + *problem};

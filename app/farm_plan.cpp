@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/slurm_syntax.h"
+#include "renderer/image.h"
 #include "renderer/state_file.h"
 
 namespace glint {
@@ -137,8 +138,7 @@ std::optional<FarmPlan> read_farm_plan(const fs::path& folder) {
   FarmPlan p;
   p.project = r.absolute_path("project");
   p.output = r.absolute_path("output");
-  const std::string ext = fs::path(p.output).extension().string();
-  if (ext != ".png" && ext != ".hdr" && ext != ".exr") r.fail("output", "must end in .png, .hdr or .exr");
+  if (const auto problem = output_format_problem(p.output)) r.fail("output", *problem);
   p.glint = r.absolute_path("glint");
   p.spp = r.integer("spp", 1, kMaxSpp);
   p.parts = static_cast<int>(r.integer("parts", 1, std::min<int64_t>(p.spp, kMaxFarmParts),

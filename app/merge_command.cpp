@@ -72,9 +72,8 @@ Options parse(int argc, char** argv) {
   }
   if (o.parts.empty()) throw UsageError{"no parts given"};
   if (o.output.empty()) throw UsageError{"no output file given (-o OUT.exr|.png|.hdr)"};
-  const std::string ext = fs::path(o.output).extension().string();
-  if (ext != ".png" && ext != ".hdr" && ext != ".exr")
-    throw UsageError{"output '" + o.output + "' must end in .png, .hdr or .exr"};
+  if (const auto problem = output_format_problem(o.output))
+    throw UsageError{"output '" + o.output + "' " + *problem};
   for (const std::string& part : o.parts) {
     std::error_code ec;
     if (part == o.output || (fs::exists(part, ec) && fs::exists(o.output, ec) && fs::equivalent(part, o.output, ec)))

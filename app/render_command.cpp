@@ -1,21 +1,25 @@
+// `glint render`: parse the command line, load the project, run a render session to its
+// target with the device's policy (renderer/render_policy.h), write the image. Prints a
+// progress line and a short summary; --verbose adds the details of the device and the program.
 #include "app/render_command.h"
 
 #include <unistd.h>
 
-#include <cerrno>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "app/command_line.h"
+#include "app/convergence_log.h"
 #include "app/progress_bar.h"
 #include "app/render_size.h"
 #include "renderer/atomic_file.h"
@@ -25,10 +29,10 @@
 #include "renderer/image.h"
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
-#include "renderer/render_part.h"
 #include "renderer/render_output.h"
+#include "renderer/render_part.h"
+#include "renderer/render_policy.h"
 #include "renderer/render_session.h"
-#include "renderer/scene_validation.h"
 
 namespace glint {
 namespace {
@@ -44,9 +48,15 @@ const char* const kUsage =
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
     "                    [--restart auto|at-once|together]\n"
     "                    [--backend auto|fragment|compute] [--work-group WxH]\n"
-    "                    [--denoise [--denoise-quality fast|high]] [--aovs]\n"
+    "                    [--denoise [--denoise-quality fast|high]] [--aovs] [--verbose]\n"
     "\n"
-    "Renders a project headlessly (EGL; no window or display needed).\n"
+    "Renders a project headlessly (EGL; no window or display needed). Prints a progress line\n"
+    "while it renders, then what it wrote (size, spp, time, samples per second), why it stopped\n"
+    "(--target-error) and the warnings and notes that matter (biased options, discarded\n"
+    "samples, the backend cache).\n"
+    "  --verbose          also print the details: the OpenGL device, the trace backend and\n"
+    "                     its timing, the closest-hit structure, adaptive sampling's start,\n"
+    "                     the program the last pass traced with\n"
     "  -o, --output FILE  .png is tonemapped with the project's exposure and tonemap;\n"
     "                     .hdr and .exr hold the linear radiance (EXR: float32 RGBA)\n"
     "  --spp N            samples per pixel (default 64)\n"
@@ -58,7 +68,7 @@ const char* const kUsage =
     "                     (estimated from each pixel's sample variance, no reference\n"
     "                     needed; never before 16 spp); --spp and --time are then caps,\n"
     "                     both may be given, whichever comes first ends it (default cap:\n"
-    "                     --spp 4096). The last line on stderr names the limit that ended it\n"
+    "                     --spp 4096). A line on stderr names the limit that ended it\n"
     "  --adaptive         adaptive sampling: from 16 spp on, a pixel whose estimated error\n"
     "                     per sample is below the image's mean skips passes (but takes every\n"
     "                     8th), so samples go where the noise is; --spp is then the most any\n"
@@ -111,7 +121,7 @@ const char* const kUsage =
     "  --accel A          auto (the default: a BVH from 48 shapes, and wherever the loop\n"
     "                     would exceed Mesa llvmpipe's shader loop limit), loop (test every\n"
     "                     shape for every ray), or bvh (bounding volume hierarchy, built\n"
-    "                     before the clock starts; its build time is printed)\n"
+    "                     before the clock starts; --verbose prints its build time)\n"
     "Path regeneration (same image either way; for measuring):\n"
     "  --restart R        when a pixel whose path has ended starts its next sample: auto\n"
     "                     (the default: together with its SIMD group where the environment\n"
@@ -129,13 +139,8 @@ const char* const kUsage =
 
 // The sample cap of --target-error when neither --spp nor --time is given.
 constexpr int64_t kTargetErrorDefaultCap = 4096;
-// The pixel samples of a render's first pass, whose time sizes the passes after it; the
-// time a pass grows to (traced in bands, or untiled on an image of one band), and the time of
-// one band of its rows (without --time).
-constexpr int64_t kFirstPassPixelSamples = 1 << 17;
-constexpr double kPassSeconds = 4.0;
-constexpr double kUntiledPassSeconds = 1.0;
-constexpr double kBandSeconds = 0.25;
+// Without a terminal (a log file), the progress line is printed at most this often.
+constexpr double kLoggedProgressSeconds = 5.0;
 
 struct Options {
   std::string project;
@@ -153,17 +158,10 @@ struct Options {
   WorkGroup work_group;
   RenderOutputOptions output_options;  // --denoise, --denoise-quality, --aovs
   bool denoise_quality_given = false;
+  bool verbose = false;
 };
 
-long parse_integer(const std::string& option, const std::string& text, long lo, long hi) {
-  char* end = nullptr;
-  errno = 0;
-  long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno != 0 || v < lo || v > hi)
-    throw UsageError{option + " expects an integer from " + std::to_string(lo) + " to " +
-                     std::to_string(hi) + ", got '" + text + "'"};
-  return v;
-}
+// ---- Parsing: a table of the options, then the checks of the options together.
 
 double parse_positive(const std::string& option, const std::string& text, const char* what) {
   char* end = nullptr;
@@ -186,117 +184,145 @@ float parse_clamp(const std::string& option, const std::string& text) {
   return static_cast<float>(v);
 }
 
-Options parse(int argc, char** argv) {
-  Options o;
-  for (int i = 0; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
-      return argv[++i];
-    };
-    if (a == "-o" || a == "--output") o.output = value();
-    else if (a == "--spp") o.spp = parse_integer(a, value(), 1, 1L << 30);
-    else if (a == "--time") o.seconds = parse_positive(a, value(), "number of seconds");
-    else if (a == "--samples") {
-      std::string v = value();
-      o.samples = parse_sample_range(v);
-      if (!o.samples) throw UsageError{"--samples expects A:B with 0 <= A < B <= 4294967296, got '" + v + "'"};
-    }
-    else if (a == "--target-error") o.target_error = parse_positive(a, value(), "relMSE");
-    else if (a == "--adaptive") o.estimator.adaptive = true;
-    else if (a == "--width") o.width = parse_integer(a, value(), 1, 16384);
-    else if (a == "--height") o.height = parse_integer(a, value(), 1, 16384);
-    else if (a == "--seed") o.seed = parse_integer(a, value(), 0, 4294967295L);
-    else if (a == "--reference") o.reference = value();
-    else if (a == "--log") o.log = value();
-    else if (a == "--backend") {
-      std::string v = value();
-      if (v == "auto") o.backend.reset();
-      else if (auto b = parse_backend(v)) o.backend = *b;
-      else throw UsageError{"--backend expects auto, fragment or compute, got '" + v + "'"};
-    } else if (a == "--work-group") {
-      std::string v = value();
-      if (auto g = parse_work_group(v)) o.work_group = *g;
-      else throw UsageError{"--work-group expects WxH with W*H from 1 to 1024 (e.g. 8x8), got '" + v + "'"};
-    } else if (a == "--sampler") {
-      std::string v = value();
-      if (v == "pcg") o.estimator.sampler = SamplerKind::pcg;
-      else if (v == "sobol") o.estimator.sampler = SamplerKind::sobol;
-      else throw UsageError{"--sampler expects pcg or sobol, got '" + v + "'"};
-    } else if (a == "--accel") {
-      std::string v = value();
-      if (v == "auto") o.estimator.accel = Accel::automatic;
-      else if (v == "loop") o.estimator.accel = Accel::loop;
-      else if (v == "bvh") o.estimator.accel = Accel::bvh;
-      else throw UsageError{"--accel expects auto, loop or bvh, got '" + v + "'"};
-    } else if (a == "--restart") {
-      std::string v = value();
-      if (v == "auto") o.estimator.restart = PathRestart::automatic;
-      else if (v == "at-once") o.estimator.restart = PathRestart::at_once;
-      else if (v == "together") o.estimator.restart = PathRestart::together;
-      else throw UsageError{"--restart expects auto, at-once or together, got '" + v + "'"};
-    } else if (a == "--no-light-sampling") o.estimator.light_sampling = false;
-    else if (a == "--no-env-sampling") o.estimator.environment_sampling = false;
-    else if (a == "--no-roulette") o.estimator.russian_roulette = false;
-    else if (a == "--clamp") o.estimator.clamp = parse_clamp(a, value());
-    else if (a == "--generic-shader") o.generic_shader = true;
-    else if (a == "--denoise") o.output_options.denoise = true;
-    else if (a == "--aovs") o.output_options.aovs = true;
-    else if (a == "--denoise-quality") {
-      std::string v = value();
-      if (v == "fast") o.output_options.quality = DenoiseQuality::fast;
-      else if (v == "high") o.output_options.quality = DenoiseQuality::high;
-      else throw UsageError{"--denoise-quality expects fast or high, got '" + v + "'"};
-      o.denoise_quality_given = true;
-    }
-    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
-    else if (o.project.empty()) o.project = a;
-    else throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
+// One of the named values of an option: "--sampler expects pcg or sobol, got 'x'" otherwise.
+template <class T>
+T parse_choice(const std::string& option, const std::string& text,
+               std::initializer_list<std::pair<const char*, T>> choices) {
+  std::string names;
+  size_t i = 0;
+  for (const auto& [name, value] : choices) {
+    if (text == name) return value;
+    names += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + std::string(name);
+    ++i;
   }
-  if (o.project.empty()) throw UsageError{"no project file given"};
-  if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
+  throw UsageError{option + " expects " + names + ", got '" + text + "'"};
+}
+
+using Flag = void (*)(Options&);
+const std::pair<const char*, Flag> kFlags[] = {
+    {"--adaptive", [](Options& o) { o.estimator.adaptive = true; }},
+    {"--no-light-sampling", [](Options& o) { o.estimator.light_sampling = false; }},
+    {"--no-env-sampling", [](Options& o) { o.estimator.environment_sampling = false; }},
+    {"--no-roulette", [](Options& o) { o.estimator.russian_roulette = false; }},
+    {"--generic-shader", [](Options& o) { o.generic_shader = true; }},
+    {"--denoise", [](Options& o) { o.output_options.denoise = true; }},
+    {"--aovs", [](Options& o) { o.output_options.aovs = true; }},
+    {"--verbose", [](Options& o) { o.verbose = true; }},
+};
+
+// An option with a value: (options, the option as typed, its value).
+using Text = const std::string&;
+using Setter = void (*)(Options&, Text, Text);
+const std::pair<const char*, Setter> kValueOptions[] = {
+    {"-o", [](Options& o, Text, Text v) { o.output = v; }},
+    {"--output", [](Options& o, Text, Text v) { o.output = v; }},
+    {"--spp", [](Options& o, Text a, Text v) { o.spp = parse_integer_option(a, v, 1, 1L << 30); }},
+    {"--time", [](Options& o, Text a, Text v) { o.seconds = parse_positive(a, v, "number of seconds"); }},
+    {"--samples",
+     [](Options& o, Text, Text v) {
+       o.samples = parse_sample_range(v);
+       if (!o.samples) throw UsageError{"--samples expects A:B with 0 <= A < B <= 4294967296, got '" + v + "'"};
+     }},
+    {"--target-error", [](Options& o, Text a, Text v) { o.target_error = parse_positive(a, v, "relMSE"); }},
+    {"--width", [](Options& o, Text a, Text v) { o.width = parse_integer_option(a, v, 1, 16384); }},
+    {"--height", [](Options& o, Text a, Text v) { o.height = parse_integer_option(a, v, 1, 16384); }},
+    {"--seed", [](Options& o, Text a, Text v) { o.seed = parse_integer_option(a, v, 0, 4294967295L); }},
+    {"--reference", [](Options& o, Text, Text v) { o.reference = v; }},
+    {"--log", [](Options& o, Text, Text v) { o.log = v; }},
+    {"--backend",
+     [](Options& o, Text a, Text v) {
+       o.backend = parse_choice<std::optional<TraceBackend>>(
+           a, v, {{"auto", std::nullopt}, {"fragment", TraceBackend::fragment}, {"compute", TraceBackend::compute}});
+     }},
+    {"--work-group",
+     [](Options& o, Text, Text v) {
+       const auto g = parse_work_group(v);
+       if (!g) throw UsageError{"--work-group expects WxH with W*H from 1 to 1024 (e.g. 8x8), got '" + v + "'"};
+       o.work_group = *g;
+     }},
+    {"--sampler",
+     [](Options& o, Text a, Text v) {
+       o.estimator.sampler =
+           parse_choice<SamplerKind>(a, v, {{"pcg", SamplerKind::pcg}, {"sobol", SamplerKind::sobol}});
+     }},
+    {"--accel",
+     [](Options& o, Text a, Text v) {
+       o.estimator.accel =
+           parse_choice<Accel>(a, v, {{"auto", Accel::automatic}, {"loop", Accel::loop}, {"bvh", Accel::bvh}});
+     }},
+    {"--restart",
+     [](Options& o, Text a, Text v) {
+       o.estimator.restart = parse_choice<PathRestart>(
+           a, v,
+           {{"auto", PathRestart::automatic}, {"at-once", PathRestart::at_once}, {"together", PathRestart::together}});
+     }},
+    {"--clamp", [](Options& o, Text a, Text v) { o.estimator.clamp = parse_clamp(a, v); }},
+    {"--denoise-quality",
+     [](Options& o, Text a, Text v) {
+       o.output_options.quality =
+           parse_choice<DenoiseQuality>(a, v, {{"fast", DenoiseQuality::fast}, {"high", DenoiseQuality::high}});
+       o.denoise_quality_given = true;
+     }},
+};
+
+// Reads argv[i] (and its value, advancing i) into `o`.
+void parse_argument(Options& o, int argc, char** argv, int& i) {
+  const std::string a = argv[i];
+  for (const auto& [name, set] : kFlags)
+    if (a == name) return set(o);
+  for (const auto& [name, set] : kValueOptions)
+    if (a == name) {
+      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
+      return set(o, a, argv[++i]);
+    }
+  if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
+  if (!o.project.empty()) throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
+  o.project = a;
+}
+
+// How many samples: --spp, --time, --target-error and --samples together.
+void check_sample_options(Options& o) {
   if (o.samples && (o.spp || o.seconds || o.target_error || o.estimator.adaptive))
     throw UsageError{"--samples renders an exact range: it takes no --spp, --time, --target-error or --adaptive"};
   if (o.samples && (o.output_options.denoise || o.output_options.aovs))
-    throw UsageError{"--samples writes a render part: denoise the merged image (--denoise and --aovs are not for parts)"};
+    throw UsageError{"--samples writes a render part: denoise the merged image (--denoise and --aovs are not "
+                     "for parts)"};
   if (o.spp && o.seconds && !o.target_error)
     throw UsageError{"give --spp or --time, not both (both are caps only with --target-error)"};
   if (o.samples) {
     o.spp = o.samples->count();
     o.estimator.first_sample = static_cast<uint32_t>(o.samples->first);
-    if (std::filesystem::path(o.output).extension() != ".exr")
+    if (fs::path(o.output).extension() != ".exr")
       throw UsageError{"--samples writes a render part: the output '" + o.output + "' must be an .exr"};
   }
+}
+
+// What is written: the image's format, the log and the denoised layers.
+void check_output_options(const Options& o) {
   if (!o.log.empty() && o.reference.empty())
     throw UsageError{"--log needs --reference REF.exr (the image the error is measured against)"};
   if (!o.reference.empty() && o.log.empty())
     throw UsageError{"--reference needs --log OUT.csv (where the convergence log is written)"};
-  auto ext = std::filesystem::path(o.output).extension().string();
-  if (ext != ".png" && ext != ".hdr" && ext != ".exr")
-    throw UsageError{"output '" + o.output + "' must end in .png, .hdr or .exr"};
+  if (const auto problem = output_format_problem(o.output)) throw UsageError{"output '" + o.output + "' " + *problem};
   if (o.output_options.denoise && !o.log.empty())
     throw UsageError{"--denoise is biased and is never used with --reference/--log (the log "
                      "measures the unbiased render's true error): leave one out"};
-  if (o.denoise_quality_given && !o.output_options.denoise)
-    throw UsageError{"--denoise-quality needs --denoise"};
-  if (o.output_options.aovs && ext != ".exr")
-    throw UsageError{"--aovs needs an .exr output (the images are written as its layers), not '" +
-                     o.output + "'"};
+  if (o.denoise_quality_given && !o.output_options.denoise) throw UsageError{"--denoise-quality needs --denoise"};
+  if (o.output_options.aovs && fs::path(o.output).extension() != ".exr")
+    throw UsageError{"--aovs needs an .exr output (the images are written as its layers), not '" + o.output + "'"};
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 0; i < argc; ++i) parse_argument(o, argc, argv, i);
+  if (o.project.empty()) throw UsageError{"no project file given"};
+  if (o.output.empty()) throw UsageError{"no output file given (-o OUT.png|.hdr|.exr)"};
+  check_sample_options(o);
+  check_output_options(o);
   return o;
 }
 
-// The reference of --reference: a linear image of exactly the render's size.
-Image load_reference(const std::string& path, int width, int height) {
-  ImageInfo info = probe_image(path);  // throws ImageError naming the file
-  if (!info.high_dynamic_range)
-    throw std::runtime_error(path + ": a reference must be linear radiance (.exr or .hdr), "
-                             "not an 8-bit display image");
-  if (info.width != width || info.height != height)
-    throw std::runtime_error(path + ": the reference is " + std::to_string(info.width) + "x" +
-                             std::to_string(info.height) + " but the render is " +
-                             std::to_string(width) + "x" + std::to_string(height));
-  return load_image(path, ColorEncoding::linear);
-}
+// ---- Files: what the command writes is never what it reads.
 
 // A path with its symbolic links resolved as far as they exist (and the last one even when
 // its target does not), for comparing files that may not exist yet.
@@ -345,234 +371,201 @@ void check_distinct_files(const Options& o) {
     throw UsageError{"--log " + o.log + " is the output image (-o " + o.output + ")"};
 }
 
-// The convergence log, with every write checked: a full disk or /dev/full fails the command
-// with the OS reason instead of losing rows silently.
-class LogFile {
- public:
-  explicit LogFile(std::string path) : path_(std::move(path)), file_(std::fopen(path_.c_str(), "w")) {
-    if (!file_) fail();
-  }
-  ~LogFile() {
-    if (file_) std::fclose(file_);
-  }
-  LogFile(const LogFile&) = delete;
-  LogFile& operator=(const LogFile&) = delete;
+// ---- Messages: a summary for everyone, details with --verbose.
 
-  // Writes and flushes one line (so a long render can be watched, and an interrupted one
-  // keeps its rows).
-  void write_line(const std::string& line) {
-    if (std::fputs(line.c_str(), file_) == EOF || std::fputc('\n', file_) == EOF ||
-        std::fflush(file_) != 0)
-      fail();
+[[gnu::format(printf, 2, 3)]] void print_detail(bool verbose, const char* format, ...) {
+  if (!verbose) return;
+  va_list args;
+  va_start(args, format);
+  std::vfprintf(stderr, format, args);
+  va_end(args);
+}
+
+void print_backend(const Options& o, const HeadlessGLContext& context, const RenderPolicy& policy) {
+  if (policy.device_choice && !policy.device_choice->note.empty())
+    std::fprintf(stderr, "note: %s\n", policy.device_choice->note.c_str());
+  print_detail(o.verbose, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(), gl_renderer_name().c_str(),
+               context.platform().c_str());
+  if (!policy.device_choice) {
+    print_detail(o.verbose, "glint: trace backend: %s (--backend)\n", backend_name(policy.backend));
+    return;
   }
-  void close() {
-    std::FILE* file = file_;
-    file_ = nullptr;
-    if (std::fclose(file) != 0) fail();
+  const BackendChoice& c = *policy.device_choice;
+  const std::string why = policy.backend_reason.empty() ? "" : "; " + policy.backend_reason;
+  print_detail(o.verbose,
+               "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; "
+               "%.2f s%s)\n",
+               backend_name(policy.backend), c.from_cache ? "cached" : "timed now", c.fragment_spp_s, c.compute_spp_s,
+               c.seconds, why.c_str());
+}
+
+// The options' notes (biased estimators) and the program's details, before the render.
+void print_render_setup(const Options& o, const Scene& scene, const GpuRenderer& renderer) {
+  if (o.estimator.clamp > 0)
+    std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
+  if (renderer.uses_bvh()) {
+    const GpuRenderer::BvhStats& b = renderer.bvh_stats();
+    print_detail(o.verbose,
+                 "glint: closest hits by BVH: %zu nodes, depth %d, built in %.2f ms, at most %d nodes per ray\n",
+                 b.nodes, b.depth, b.seconds * 1e3, b.max_steps);
+  } else {
+    print_detail(o.verbose, "glint: closest hits by the loop over %zu shapes\n",
+                 scene.spheres.size() + scene.quads.size());
+  }
+  if (renderer.exceeds_llvmpipe_loop_limit() && on_llvmpipe())
+    std::fprintf(stderr,
+                 "warning: one sample of %s may run more loop iterations than Mesa's llvmpipe "
+                 "allows a shader (65535; too many bounces, or too many shapes for the loop with "
+                 "--accel loop): parts of this image may be wrong (use a GPU)\n",
+                 o.project.c_str());
+  if (o.estimator.adaptive)
+    print_detail(o.verbose, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
+                 o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
+}
+
+// The progress line after a step: redrawn in place on a terminal, else a line every
+// kLoggedProgressSeconds.
+class ProgressLine {
+ public:
+  explicit ProgressLine(const Options& o) : options_(o), interactive_(isatty(STDERR_FILENO)) {}
+
+  void show(const RenderSession& s, GpuRenderer& renderer) {
+    const double elapsed = s.seconds();
+    if (!interactive_ && elapsed - last_shown_ < kLoggedProgressSeconds) return;
+    const int64_t target = s.options().target.samples;
+    std::string line = options_.seconds ? format_time_progress(elapsed, *options_.seconds, s.samples())
+                                        : format_progress(s.traced_samples(), target, elapsed, "spp");
+    // The estimated error beside the bar: the session's own when it targets one, else a fresh
+    // one (a small read-back; every kLoggedProgressSeconds when not on a terminal).
+    double estimated = s.estimated_relmse();  // -1: not known (fewer than two samples)
+    if (!options_.target_error && s.samples() > 0) {
+      const ErrorEstimate e = renderer.estimate_error();
+      estimated = e.known() ? e.relmse : -1;
+    }
+    line += format_error_estimate(estimated, options_.target_error.value_or(0));
+    std::fprintf(stderr, interactive_ ? "\r%s\033[K" : "%s\n", line.c_str());
+    last_shown_ = elapsed;
+  }
+  void end() const {
+    if (interactive_) std::fputc('\n', stderr);
   }
 
  private:
-  [[noreturn]] void fail() const {
-    throw std::runtime_error(path_ + ": cannot write the log: " + std::strerror(errno));
-  }
-  std::string path_;
-  std::FILE* file_;
+  const Options& options_;
+  const bool interactive_;
+  double last_shown_ = -1e9;
 };
+
+// After the render: why it stopped (an error target) and the program it traced with.
+void print_render_end(const Options& o, const RenderSession& session, const GpuRenderer& renderer) {
+  if (o.target_error)
+    std::fprintf(stderr, "glint: stopped by the %s: estimated relMSE %.4g (target %g) at %lld spp, %.2f s\n",
+                 stop_reason_text(session.stop_reason()), session.estimated_relmse(), *o.target_error,
+                 static_cast<long long>(session.samples()), session.seconds());
+  std::string defines = renderer.last_pass_defines();
+  for (char& c : defines) c = c == '\n' ? ' ' : c;
+  print_detail(o.verbose, "glint: last pass traced with the %s program%s%s\n",
+               renderer.last_pass_generic() ? "generic" : "specialised", defines.empty() ? "" : ": ", defines.c_str());
+}
+
+// ---- The render.
+
+RenderTarget render_target(const Options& o) {
+  if (!o.target_error) return o.seconds ? RenderTarget{0, *o.seconds} : RenderTarget{o.spp ? *o.spp : 64, 0};
+  RenderTarget target;
+  target.error = *o.target_error;
+  target.seconds = o.seconds.value_or(0);
+  target.samples = o.spp ? *o.spp : o.seconds ? 0 : kTargetErrorDefaultCap;
+  return target;
+}
+
+// A renderer synced to the scene with its program built (the BVH too), before the clock starts.
+std::unique_ptr<GpuRenderer> prepare_renderer(const Options& o, const Scene& scene, TraceBackend backend, int width,
+                                              int height) {
+  GpuRendererOptions options;
+  options.force_generic_shader = o.generic_shader;
+  options.work_group = o.work_group;
+  options.backend = backend;
+  auto renderer = std::make_unique<GpuRenderer>(options);
+  renderer->set_options(o.estimator);
+  // Before the render, so that a missing library is known before a long wait.
+  if (o.output_options.denoise && denoising_available_or_warn_once("glint render"))
+    std::fprintf(stderr, "note: --denoise is biased (the denoiser trades noise for blur)\n");
+  renderer->set_aovs_enabled(o.output_options.denoise || o.output_options.aovs);
+  try {
+    renderer->sync(scene, width, height);
+  } catch (const ImageError& e) {  // the driver cannot hold the textures: name the project too
+    throw std::runtime_error(o.project + ": " + e.what());
+  }
+  renderer->prepare_specialised_program();
+  return renderer;
+}
+
+// Writes the image (or the render part) and prints what was written; returns the exit code
+// (1 when the denoiser failed: the noisy image is written).
+int write_outputs(const Options& o, const Scene& scene, GpuRenderer& renderer, double seconds) {
+  const int width = renderer.width(), height = renderer.height();
+  std::string denoise_failure;
+  if (o.samples) {
+    save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
+  } else {
+    const RenderOutputReport written = save_render_output(renderer, scene.display, o.output, o.output_options);
+    if (written.denoised)
+      std::fprintf(stderr, "glint: denoised (biased) with Open Image Denoise on the %s in %.2f s\n",
+                   written.device.c_str(), written.denoise_seconds);
+    if (written.denoise_failed) denoise_failure = written.note;
+  }
+  if (double discarded = nonfinite_count(renderer.read_accumulation()); discarded > 0)
+    std::fprintf(stderr, "warning: %.0f samples were discarded (non-finite, or a BVH traversal past its step cap)\n",
+                 discarded);
+  const int64_t spp = renderer.sample_count();
+  const double pixel_samples = double(spp) * width * height;
+  std::fprintf(stderr, "glint: wrote %s (%dx%d, %lld spp, %.2f s, %.1f spp/s, %.2f Msamples/s)\n", o.output.c_str(),
+               width, height, static_cast<long long>(spp), seconds, spp / seconds, pixel_samples / seconds * 1e-6);
+  if (denoise_failure.empty()) return 0;
+  std::fprintf(stderr, "glint render: %s\n", denoise_failure.c_str());
+  return 1;
+}
+
+int render(const Options& o) {
+  check_distinct_files(o);
+  // Fail before rendering, not after, when the image could not be written: a missing or
+  // read-only folder, a name too long for the file system.
+  if (const auto problem = file_write_problem(o.output)) throw std::runtime_error(o.output + ": " + *problem);
+  Scene scene = load_project(o.project);
+  const auto [width, height] = render_size(o.width, o.height, scene.film);
+  if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
+  std::unique_ptr<ConvergenceLog> log;
+  if (!o.log.empty()) log = std::make_unique<ConvergenceLog>(o.log, load_reference(o.reference, width, height));
+
+  auto context = HeadlessGLContext::create();
+  const RenderPolicy policy =
+      batch_render_policy({width, height, render_target(o), o.estimator.adaptive, log != nullptr, o.backend});
+  print_backend(o, *context, policy);
+  const std::unique_ptr<GpuRenderer> renderer = prepare_renderer(o, scene, policy.backend, width, height);
+  print_render_setup(o, scene, *renderer);
+
+  RenderSession session(*renderer, policy.session.options);
+  ProgressLine progress(o);
+  session.run(policy.session.step_seconds, [&](RenderSession& s) {
+    if (log) log->after_step(s, *renderer);
+    progress.show(s, *renderer);
+  });
+  progress.end();
+  print_render_end(o, session, *renderer);
+
+  const int code = write_outputs(o, scene, *renderer, session.seconds());
+  if (log) std::fprintf(stderr, "glint: %s\n", log->close().c_str());
+  return code;
+}
 
 }  // namespace
 
 int run_render_command(int argc, char** argv) {
   Options o;
   if (int code = parse_command_line("glint render", kUsage, argc, argv, parse, o); code >= 0) return code;
-
   try {
-    check_distinct_files(o);
-    // Fail before rendering, not after, when the image could not be written: a missing or
-    // read-only folder, a name too long for the file system.
-    if (const auto problem = file_write_problem(o.output))
-      throw std::runtime_error(o.output + ": " + *problem);
-    Scene scene = load_project(o.project);
-    const auto [width, height] = render_size(o.width, o.height, scene.film);
-    if (o.seed) scene.render.seed = static_cast<uint32_t>(*o.seed);
-
-    std::optional<Image> reference;
-    std::optional<LogFile> log;
-    if (!o.log.empty()) {
-      reference = load_reference(o.reference, width, height);
-      log.emplace(o.log);
-      log->write_line("spp,seconds,gpu_seconds,relmse,estimated_relmse,relmse_trimmed,mape,mean_bias,nonfinite");
-    }
-
-    auto context = HeadlessGLContext::create();
-    std::fprintf(stderr, "glint: OpenGL %s on %s (%s)\n", gl_version_string().c_str(),
-                 gl_renderer_name().c_str(), context->platform().c_str());
-    // llvmpipe runs a thread per CPU (the back-end switch and the bands below count on it).
-    const int cpu_threads = static_cast<int>(std::thread::hardware_concurrency());
-    GpuRendererOptions renderer_options;
-    renderer_options.force_generic_shader = o.generic_shader;
-    renderer_options.work_group = o.work_group;
-    if (o.backend) {
-      renderer_options.backend = *o.backend;
-      std::fprintf(stderr, "glint: trace backend: %s (--backend)\n", backend_name(*o.backend));
-    } else {
-      const BackendChoice choice = choose_backend();
-      renderer_options.backend = choice.backend;
-      if (!choice.note.empty()) std::fprintf(stderr, "note: %s\n", choice.note.c_str());
-      // The device's choice is timed at 128x128; an image too small for llvmpipe's fragment
-      // path to use every thread takes the compute shader (the same image).
-      std::string why;
-      if (choice.backend == TraceBackend::fragment && on_llvmpipe() &&
-          fewer_llvmpipe_tiles_than_threads(width, height, cpu_threads)) {
-        renderer_options.backend = TraceBackend::compute;
-        why = "; compute for an image of fewer 64x64 llvmpipe tiles than its " + std::to_string(cpu_threads) + " threads";
-      }
-      std::fprintf(stderr, "glint: trace backend: %s (auto, %s: fragment %.0f spp/s, compute %.0f spp/s on the timing scene; %.2f s%s)\n",
-                   backend_name(renderer_options.backend), choice.from_cache ? "cached" : "timed now",
-                   choice.fragment_spp_s, choice.compute_spp_s, choice.seconds, why.c_str());
-    }
-    GpuRenderer renderer(renderer_options);
-    renderer.set_options(o.estimator);
-    // Before the render, so that a missing library is known before a long wait.
-    if (o.output_options.denoise && denoising_available_or_warn_once("glint render"))
-      std::fprintf(stderr, "note: --denoise is biased (the denoiser trades noise for blur)\n");
-    renderer.set_aovs_enabled(o.output_options.denoise || o.output_options.aovs);
-    if (o.estimator.clamp > 0)
-      std::fprintf(stderr, "note: --clamp %g is biased (fireflies are scaled down)\n", o.estimator.clamp);
-    try {
-      renderer.sync(scene, width, height);
-    } catch (const ImageError& e) {  // the driver cannot hold the textures: name the project too
-      throw std::runtime_error(o.project + ": " + e.what());
-    }
-    renderer.prepare_specialised_program();
-    if (renderer.uses_bvh()) {
-      const GpuRenderer::BvhStats& b = renderer.bvh_stats();
-      std::fprintf(stderr, "glint: closest hits by BVH: %zu nodes, depth %d, built in %.2f ms, at most %d nodes per ray\n",
-                   b.nodes, b.depth, b.seconds * 1e3, b.max_steps);
-    } else {
-      std::fprintf(stderr, "glint: closest hits by the loop over %zu shapes\n", scene.spheres.size() + scene.quads.size());
-    }
-    if (renderer.exceeds_llvmpipe_loop_limit() && on_llvmpipe())
-      std::fprintf(stderr,
-                   "warning: one sample of %s may run more loop iterations than Mesa's llvmpipe "
-                   "allows a shader (65535; too many bounces, or too many shapes for the loop with "
-                   "--accel loop): parts of this image may be wrong (use a GPU)\n",
-                   o.project.c_str());
-
-    RenderSessionOptions session_options;
-    if (o.target_error) {
-      session_options.target.error = *o.target_error;
-      session_options.target.seconds = o.seconds.value_or(0);
-      session_options.target.samples = o.spp ? *o.spp : o.seconds ? 0 : kTargetErrorDefaultCap;
-    } else {
-      session_options.target = o.seconds ? RenderTarget{0, *o.seconds} : RenderTarget{o.spp ? *o.spp : 64, 0};
-    }
-    if (o.estimator.adaptive)
-      std::fprintf(stderr, "glint: adaptive sampling from %d spp (every %dth pass samples every pixel)\n",
-                   o.estimator.adaptive_min_samples, o.estimator.adaptive_every);
-    session_options.checkpoints = log.has_value();
-    // Passes of many samples, traced in bands of rows: a pass's draws trace up to the loop
-    // budget's samples per pixel, and in a draw of few samples the lanes whose paths end early
-    // wait for the longest path of their SIMD group (path regeneration refills them only with
-    // the pixel's further samples). So: a first pass of about kFirstPassPixelSamples samples in
-    // all (tens of milliseconds on llvmpipe), then passes grown by rate to about
-    // kPassSeconds, each traced in bands of about kBandSeconds so that the progress bar moves.
-    // Not with --time, whose target is checked between passes only, nor with --adaptive, whose
-    // threshold is refreshed between passes (GpuRenderer::begin_pass): there passes start at
-    // one sample and double while under a quarter of a second, untiled.
-    const bool long_passes = !o.seconds && !o.estimator.adaptive;
-    if (long_passes) {
-      // Bands only where the image holds more than one (else untiled, and shorter passes so
-      // that the bar still moves).
-      session_options.band_rows = band_rows_for_threads(width, cpu_threads);
-      session_options.tiled = session_options.band_rows < height;
-      session_options.batch.grow_by_rate = true;
-      session_options.batch.grow_below = session_options.tiled ? kPassSeconds : kUntiledPassSeconds;
-      session_options.batch.first_batch = static_cast<int>(
-          std::clamp<int64_t>(kFirstPassPixelSamples / (int64_t(width) * height), 1, 16));
-    }
-    RenderSession session(renderer, session_options);
-    const bool interactive = isatty(STDERR_FILENO);
-    ImageMetrics last_metrics;
-    double last_report = -1e9;
-    // After each step, outside the session's clock: a checkpoint's read-back and metrics are
-    // not rendering (and do not eat into --time).
-    auto after_step = [&](RenderSession& s) {
-      const double elapsed = s.seconds();
-      if (log && s.at_checkpoint()) {
-        double gpu = renderer.trace_gpu_seconds();
-        Image accumulation = renderer.read_accumulation();
-        last_metrics = compare_images(accumulation, *reference);
-        const ErrorEstimate estimate = renderer.estimate_error();
-        char row[288];
-        std::snprintf(row, sizeof row, "%lld,%.6f,%.6f,%.9g,%.9g,%.9g,%.9g,%.9g,%.0f",
-                      static_cast<long long>(s.samples()), elapsed, gpu, last_metrics.relmse,
-                      estimate.known() ? estimate.relmse : std::nan(""), last_metrics.relmse_trimmed,
-                      last_metrics.mape, last_metrics.mean_bias, nonfinite_count(accumulation));
-        log->write_line(row);
-      }
-      if (interactive || elapsed - last_report >= 5.0) {
-        std::string line = o.seconds ? format_time_progress(elapsed, *o.seconds, s.samples())
-                                     : format_progress(s.traced_samples(), s.options().target.samples, elapsed, "spp");
-        // The estimated error beside the bar: the session's own when it targets one, else a
-        // fresh one (a small read-back; every 5 s when not on a terminal).
-        double estimated = s.estimated_relmse();  // -1: not known (fewer than two samples)
-        if (!o.target_error && s.samples() > 0) {
-          const ErrorEstimate e = renderer.estimate_error();
-          estimated = e.known() ? e.relmse : -1;
-        }
-        line += format_error_estimate(estimated, o.target_error.value_or(0));
-        std::fprintf(stderr, interactive ? "\r%s\033[K" : "%s\n", line.c_str());
-        last_report = elapsed;
-      }
-    };
-    while (!session.done()) {
-      session.step(long_passes ? kBandSeconds : 0);
-      after_step(session);
-    }
-    double total = session.seconds();
-    if (interactive) std::fputc('\n', stderr);
-    if (o.target_error) {
-      const StopReason why = session.stop_reason();
-      std::fprintf(stderr, "glint: stopped by the %s: estimated relMSE %.4g (target %g) at %lld spp, %.2f s\n",
-                   stop_reason_text(why), session.estimated_relmse(), *o.target_error,
-                   static_cast<long long>(session.samples()), total);
-    }
-    {
-      std::string defines = renderer.last_pass_defines();
-      for (char& c : defines) c = c == '\n' ? ' ' : c;
-      std::fprintf(stderr, "glint: last pass traced with the %s program%s%s\n",
-                   renderer.last_pass_generic() ? "generic" : "specialised",
-                   defines.empty() ? "" : ": ", defines.c_str());
-    }
-
-    std::string denoise_failure;  // the noisy image is written; the command still fails
-    if (o.samples) {
-      save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
-    } else {
-      const RenderOutputReport written = save_render_output(renderer, scene.display, o.output, o.output_options);
-      if (written.denoised)
-        std::fprintf(stderr, "glint: denoised (biased) with Open Image Denoise on the %s in %.2f s\n",
-                     written.device.c_str(), written.denoise_seconds);
-      if (written.denoise_failed) denoise_failure = written.note;
-    }
-    if (double discarded = nonfinite_count(renderer.read_accumulation()); discarded > 0)
-      std::fprintf(stderr, "warning: %.0f samples were discarded (non-finite, or a BVH traversal past its step cap)\n",
-                   discarded);
-    double pixel_samples = double(renderer.sample_count()) * width * height;
-    std::fprintf(stderr, "glint: wrote %s (%dx%d, %lld spp, %.2f s, %.1f spp/s, %.2f Msamples/s)\n",
-                 o.output.c_str(), width, height, static_cast<long long>(renderer.sample_count()), total,
-                 renderer.sample_count() / total, pixel_samples / total * 1e-6);
-    if (log) {
-      log->close();
-      std::fprintf(stderr, "glint: wrote %s (last row: relMSE %.4g, trimmed %.4g, bias %+.4g)\n",
-                   o.log.c_str(), last_metrics.relmse, last_metrics.relmse_trimmed,
-                   last_metrics.mean_bias);
-    }
-    if (!denoise_failure.empty()) {
-      std::fprintf(stderr, "glint render: %s\n", denoise_failure.c_str());
-      return 1;
-    }
-    return 0;
+    return render(o);
   } catch (const UsageError& e) {  // arguments that conflict with each other or the project
     std::fprintf(stderr, "glint render: %s\n", e.message.c_str());
     return 2;

@@ -24,6 +24,7 @@
 #include "editor/viewport_renderer.h"
 #include "renderer/backend_choice.h"
 #include "renderer/image.h"
+#include "renderer/parse_number.h"
 #include "renderer/program_worker.h"
 
 #ifndef GLINT_SOURCE_DIR
@@ -328,12 +329,8 @@ std::optional<EditorOptions> parse_editor_options(int argc, char** argv, std::st
     auto integer = [&](long lo, long hi) -> std::optional<long> {
       auto v = value();
       if (!v) return std::nullopt;
-      char* end = nullptr;
-      long n = std::strtol(v->c_str(), &end, 10);
-      if (v->empty() || *end || n < lo || n > hi) {
-        error = a + " expects an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" + *v + "'";
-        return std::nullopt;
-      }
+      const std::optional<long> n = parse_integer(*v, lo, hi);
+      if (!n) error = integer_expected(a, lo, hi, *v);
       return n;
     };
     if (a == "--screenshot") {

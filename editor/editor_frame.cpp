@@ -6,6 +6,7 @@
 
 #include "editor/ui.h"
 #include "editor/viewport_renderer.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 
@@ -14,8 +15,7 @@ void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport)
   state.viewport.frame = viewport.render(doc.scene, viewport_request(state));
   const auto export_start = std::chrono::steady_clock::now();
   step_export(state, viewport.export_slice_seconds());
-  viewport.add_trace_seconds(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - export_start).count());
+  viewport.add_trace_seconds(seconds_since(export_start));
   doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting);
   show_viewport_image(state.viewport);
   ImGui::Render();

@@ -8,9 +8,11 @@
 #include <epoxy/gl.h>
 
 #include "renderer/atomic_file.h"
+#include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/render_output.h"
+#include "renderer/render_policy.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
 
@@ -27,8 +29,7 @@ std::string validate_export_settings(const ExportSettings& s) {
   if (!s.use_time && s.samples < 1) return "samples per pixel must be at least 1";
   if (s.use_time && !(s.seconds > 0 && std::isfinite(s.seconds))) return "the time budget must be positive";
   if (s.output.empty()) return "no output file chosen";
-  auto ext = s.output.extension().string();
-  if (ext != ".png" && ext != ".hdr" && ext != ".exr") return "the output must end in .png, .hdr or .exr";
+  if (const auto problem = output_format_problem(s.output)) return "the output " + *problem;
   auto dir = std::filesystem::absolute(s.output).parent_path();
   if (!std::filesystem::is_directory(dir)) return "the folder " + dir.string() + " does not exist";
   return "";
@@ -47,7 +48,11 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
   if (!errors.empty()) throw std::runtime_error(errors.front().what());
   GpuRendererOptions options;
   options.worker = std::move(worker);
-  options.backend = backend;
+  // The device's back end, or the compute shader for an image too small for llvmpipe's
+  // fragment path to use every thread (the same image; renderer/render_policy.h).
+  options.backend = backend_for_image(backend, settings_.width, settings_.height, on_llvmpipe(),
+                                      llvmpipe_thread_count())
+                        .backend;
   renderer_ = std::make_unique<GpuRenderer>(options);
   renderer_->set_options(settings_.estimator);
   renderer_->set_aovs_enabled(settings_.denoise);

@@ -14,6 +14,7 @@
 
 #include "renderer/render_options.h"
 #include "renderer/scene.h"
+#include "renderer/stopwatch.h"
 #include "renderer/trace_backend.h"
 
 namespace glint {
@@ -45,7 +46,9 @@ class ExportJob {
 
   // Copies the scene; creates the renderer and uploads the scene. Throws on a bad scene/setting
   // and, before rendering, when the output cannot be written (file_write_problem).
-  // `worker` (may be null) builds the specialised trace program off the UI thread.
+  // `worker` (may be null) builds the specialised trace program off the UI thread. `backend` is
+  // the device's; an image too small for it on llvmpipe takes the compute shader
+  // (backend_for_image).
   ExportJob(const Scene& scene, ExportSettings settings, std::shared_ptr<ProgramWorker> worker = nullptr,
             TraceBackend backend = TraceBackend::fragment);
   ~ExportJob();
@@ -67,7 +70,7 @@ class ExportJob {
   // Wall-clock seconds since the job started: what the user waits, the UI's frames included
   // (the dialog's time and its time left use it).
   double wall_seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    return seconds_since(started_);
   }
   const std::string& error() const { return error_; }
   // When done: how the output was denoised (or why it was not), "" without denoising.

@@ -9,6 +9,7 @@
 #include "renderer/denoiser.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/render_output.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 
@@ -43,7 +44,7 @@ void ViewportDenoiser::run_worker() {
       if (!denoiser_) denoiser_ = std::make_unique<Denoiser>(DenoiseQuality::fast);
       const auto start = std::chrono::steady_clock::now();
       result.display = tonemapped(denoiser_->denoise(job.colour, &job.albedo, &job.normal), job.display);
-      result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      result.seconds = seconds_since(start);
     } catch (const std::exception& e) {
       result.error = e.what();
     }

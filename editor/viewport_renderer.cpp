@@ -8,15 +8,9 @@
 #include "renderer/gl_context.h"
 #include "renderer/render_session.h"
 #include "renderer/scene_validation.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
-namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 ViewportRenderer::ViewportRenderer(GpuRendererOptions options) : renderer_(std::move(options)) {}
 
@@ -72,7 +66,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
       synced = true;
       if (automatic) {
         // Fluid while editing, finer when idle; the level changes only here.
-        preview_frame = {stats.restarted, request.user_active, since(start_), renderer_.sample_count(),
+        preview_frame = {stats.restarted, request.user_active, seconds_since(start_), renderer_.sample_count(),
                          int64_t(full_w) * full_h};
         if (int d = preview_.update(budget_, preview_frame); d != divisor) {
           divisor = d;
@@ -91,7 +85,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   if (stats.restarted) estimated_relmse_ = -1;
   const bool targeted = request.target_error > 0;
   if (synced && renderer_.sample_count() >= 2 &&
-      (estimated_relmse_ < 0 || since(last_estimate_) >= kViewportEstimateSeconds)) {
+      (estimated_relmse_ < 0 || seconds_since(last_estimate_) >= kViewportEstimateSeconds)) {
     const ErrorEstimate e = renderer_.estimate_error();
     estimated_relmse_ = e.known() ? e.relmse : -1;
     last_estimate_ = std::chrono::steady_clock::now();
@@ -108,7 +102,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
       auto t0 = std::chrono::steady_clock::now();
       renderer_.trace(k);
       glFinish();  // the budget needs the pass's real time
-      double seconds = since(t0);
+      double seconds = seconds_since(t0);
       last_trace_seconds_ = seconds;
       budget_.record(k, pixels, seconds, int64_t(full_w) * full_h);
       rate_samples_ += k;
@@ -116,7 +110,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   }
   // Samples per pixel per second of wall-clock time, over half-second windows.
   if (rate_start_.time_since_epoch().count() == 0) rate_start_ = now;
-  if (double span = since(rate_start_); span >= 0.5) {
+  if (double span = seconds_since(rate_start_); span >= 0.5) {
     spp_rate_ = rate_samples_ / span;
     rate_samples_ = 0;
     rate_start_ = std::chrono::steady_clock::now();

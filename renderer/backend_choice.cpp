@@ -15,6 +15,7 @@
 #include "renderer/llvmpipe_threads.h"
 #include "renderer/scene_digest.h"
 #include "renderer/shader_sources.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 namespace {
@@ -28,10 +29,6 @@ using Clock = std::chrono::steady_clock;
 // the compute shader on the timing scene on Mesa 25, where `glint render`'s long passes trace
 // it about 1.3x as fast (bench/reports/THROUGHPUT.md, "The back-end timing's passes").
 constexpr int kTimingSize = 128, kTimingRounds = 5, kTimingSpp = 32;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The workload the two entry points differ on most: long matte paths, no textures, no
 // emitters, so the program is small and compiles fast.

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "renderer/scene_tables.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 
@@ -24,7 +25,7 @@ void BvhTables::update(const PackedScene& packed, const glm::vec3& camera, Scene
   stats_.nodes = bvh_.nodes.size();
   stats_.depth = bvh_.depth;
   stats_.refit = refit;
-  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.seconds = seconds_since(start);
 }
 
 }  // namespace glint

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -82,6 +83,15 @@ Image to_linear_image(const TextureImage& texture, ColorEncoding encoding);
 // ImageError naming the file and the OS reason on failure (the old file is then unchanged)
 // or for an unknown extension.
 void save_image(const std::filesystem::path& path, const Image& image);
+
+// The rule for a render's output (`glint render`, `merge`, `farm`, a farm plan, the editor's
+// export): its name ends in .png, .hdr or .exr, as typed. nullopt when it does, else
+// "must end in .png, .hdr or .exr" (the caller names the file or field before it).
+inline std::optional<std::string> output_format_problem(const std::filesystem::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".png" || ext == ".hdr" || ext == ".exr") return std::nullopt;
+  return "must end in .png, .hdr or .exr";
+}
 
 // String attributes of an OpenEXR header, (name, value) in file order: a render part's
 // provenance (renderer/render_part.h).

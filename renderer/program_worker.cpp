@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "renderer/gl_program.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 
@@ -68,7 +69,7 @@ double ProgramWorker::draw_once(ProgramJob& job, GlProgram& program) {
   job.warm_up(program);
   glUseProgram(0);
   glFinish();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return seconds_since(start);
 }
 
 namespace {
@@ -109,7 +110,7 @@ void ProgramWorker::build(ProgramJob& job) {
   } catch (const std::exception& e) {
     job.error = e.what();
   }
-  job.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  job.seconds = seconds_since(start);
 }
 
 }  // namespace glint

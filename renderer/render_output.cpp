@@ -8,6 +8,7 @@
 
 #include "renderer/gpu_renderer.h"
 #include "renderer/shader_lib.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 
@@ -78,7 +79,7 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
     const auto start = std::chrono::steady_clock::now();
     const bool guided = !aovs.albedo.pixels.empty();
     denoised = guided ? denoiser->denoise(noisy, &aovs.albedo, &aovs.normal) : denoiser->denoise(noisy);
-    report.denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report.denoise_seconds = seconds_since(start);
     report.device = denoiser->device_name();
   } catch (const std::bad_alloc&) {
     report.denoise_failed = true;

@@ -9,15 +9,12 @@
 
 #include "renderer/backend_choice.h"
 #include "renderer/gpu_renderer.h"
+#include "renderer/stopwatch.h"
 
 namespace glint {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 // The checkpoint after `samples`: the next power of two, or the sample target if that is
 // nearer (0 for a time target: powers of two only).
@@ -200,6 +197,13 @@ void RenderSession::run(const std::function<void(RenderSession&)>& after_pass) {
   while (!done()) {
     step(0);
     if (after_pass && !renderer_.pass_under_way()) after_pass(*this);
+  }
+}
+
+void RenderSession::run(double slice_seconds, const std::function<void(RenderSession&)>& on_step) {
+  while (!done()) {
+    step(slice_seconds);
+    if (on_step) on_step(*this);
   }
 }
 

@@ -91,6 +91,10 @@ class RenderSession {
   // Steps to the end, calling `after_pass` after every pass (outside the traced time: a
   // checkpoint's read-back does not count as rendering). `after_pass` may cancel.
   void run(const std::function<void(RenderSession&)>& after_pass = {});
+  // Steps of `slice_seconds` each (step()) to the end, calling `on_step` after every step, also
+  // one that ended inside a pass (a tiled band): to show progress while a long pass runs, and
+  // to read a checkpoint back (at_checkpoint()), outside the traced time. `on_step` may cancel.
+  void run(double slice_seconds, const std::function<void(RenderSession&)>& on_step);
 
   // Which limit ended it; none while it runs.
   StopReason stop_reason() const;

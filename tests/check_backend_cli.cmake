@@ -1,13 +1,13 @@
 # `glint render --backend` (GLINT, PROJECT, OUT a scratch folder): fragment and compute render
 # and say so, auto times once and then reads its cache (in OUT, never the user's ~/.cache), and
-# bad values exit 2 with a message naming the option.
+# bad values exit 2 with a message naming the option. The back end is a detail: --verbose.
 file(REMOVE_RECURSE "${OUT}")
 file(MAKE_DIRECTORY "${OUT}")
 
 include(${CMAKE_CURRENT_LIST_DIR}/expect_exit.cmake)
 function(expect args rc_expected pattern)
   expect_exit("${rc_expected}" "${pattern}" ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache
-              "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2 ${args})
+              "${GLINT}" render "${PROJECT}" -o "${OUT}/out.png" --width 24 --spp 2 --verbose ${args})
 endfunction()
 
 expect("--backend;fragment" 0 "trace backend: fragment \\(--backend\\)")
@@ -24,7 +24,7 @@ expect("" 0 "trace backend: (fragment|compute) \\(auto, cached")
 # 24 px wide: on llvmpipe with more than one thread, one tile for several threads, so the
 # automatic choice renders with the compute shader and says why.
 execute_process(COMMAND ${CMAKE_COMMAND} -E env XDG_CACHE_HOME=${OUT}/cache "${GLINT}" render "${PROJECT}"
-                -o "${OUT}/out.png" --width 24 --spp 2 OUTPUT_VARIABLE out ERROR_VARIABLE err)
+                -o "${OUT}/out.png" --width 24 --spp 2 --verbose OUTPUT_VARIABLE out ERROR_VARIABLE err)
 cmake_host_system_information(RESULT cpus QUERY NUMBER_OF_LOGICAL_CORES)
 if("${err}" MATCHES " on llvmpipe" AND cpus GREATER 1)
   if(NOT "${err}" MATCHES "trace backend: compute \\(auto, cached")

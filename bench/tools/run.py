@@ -78,7 +78,7 @@ WROTE = re.compile(r"wrote .* \((\d+)x(\d+), (\d+) spp, ([0-9.]+) s, ([0-9.]+) s
 
 def glint_render(glint, project, out, spp, seed, width, extra=()):
     cmd = [glint, "render", project, "-o", out, "--spp", str(spp), "--seed", str(seed),
-           "--width", str(width)] + list(extra)
+           "--width", str(width), "--verbose"] + list(extra)  # --verbose: the OpenGL line
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr}")

@@ -88,7 +88,7 @@ def write_scene(path, n, bounces):
 
 def render(glint, scene, accel, width, spp, out):
     cmd = [glint, "render", scene, "-o", out, "--width", str(width), "--height", str(width),
-           "--spp", str(spp), "--accel", accel]
+           "--spp", str(spp), "--accel", accel, "--verbose"]  # --verbose: the device and the BVH
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         raise RuntimeError("%s failed:\n%s" % (" ".join(cmd), p.stderr))

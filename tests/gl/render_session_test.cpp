@@ -166,6 +166,33 @@ TEST_F(SessionTest, CancelStopsTracing) {
   EXPECT_LT(session.progress(), 0.01f);
 }
 
+// run(slice, on_step) calls back after every step, also one that ends inside a tiled pass
+// (`glint render`'s progress line while a long pass runs); on_step may cancel mid-pass.
+TEST_F(SessionTest, RunWithASliceCallsBackAfterEveryBand) {
+  RenderSessionOptions o;
+  o.target.samples = 3;
+  o.batch.max_batch = 1;
+  o.tiled = true;
+  o.band_rows = 2;  // a slice of 0: one band of 2 of the 8 rows per step
+  RenderSession session(renderer, o);
+  std::vector<double> traced;
+  session.run(0.0, [&](RenderSession& s) { traced.push_back(s.traced_samples()); });
+  ASSERT_EQ(traced.size(), 12u);
+  for (size_t i = 0; i < traced.size(); ++i) EXPECT_DOUBLE_EQ(traced[i], 0.25 * double(i + 1)) << i;
+  EXPECT_EQ(renderer.sample_count(), 3);
+  EXPECT_EQ(session.stop_reason(), StopReason::samples);
+
+  renderer.sync(test::empty_scene(), 8, 8);
+  RenderSession cancelled(renderer, o);
+  int steps = 0;
+  cancelled.run(0.0, [&](RenderSession& s) {
+    if (++steps == 6) s.cancel();  // half-way through the second pass
+  });
+  EXPECT_EQ(steps, 6);
+  EXPECT_TRUE(cancelled.cancelled());
+  EXPECT_EQ(renderer.sample_count(), 1);
+}
+
 TEST_F(SessionTest, NeedsATarget) {
   RenderSessionOptions o;
   o.target.samples = 0;
