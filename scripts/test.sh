@@ -28,7 +28,8 @@ stage "tests"
 [ "$quick" = 1 ] && exit 0
 
 # Sanitizers (README, Tests): every unit, editor and GL test but the real window
-# (editor.window_smoke and editor.recovery_start: they need the glint executable, not built here) and the scalability test
+# (editor.window_smoke, editor.recovery_start and editor.state_files_start: they need the glint
+# executable, not built here) and the scalability test
 # unit.MalformedInput.AMillionSpheresLoad (minutes under ASan), the slower refractive chi-square
 # cases (pure arithmetic), the soak (gl.Soak.*: it bounds heap and RSS, which ASan's allocator
 # changes) and the frame-time test editor.BvhDrag.*
