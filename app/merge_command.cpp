@@ -14,6 +14,7 @@
 #include "renderer/atomic_file.h"
 #include "renderer/image.h"
 #include "renderer/part_merge.h"
+#include "renderer/render_output.h"
 #include "renderer/render_part.h"
 
 namespace glint {
@@ -100,7 +101,7 @@ int run_merge_command(int argc, char** argv) {
       if (ext == ".exr") {
         save_part_image(o.output, merged.info, merged.image);
       } else if (ext == ".png") {
-        save_image(o.output, tonemap_image(merged.image, merged.info.display));
+        save_image(o.output, tonemapped(merged.image, merged.info.display));
       } else {
         Image opaque = merged.image;
         for (size_t i = 3; i < opaque.pixels.size(); i += 4) opaque.pixels[i] = 1.0f;

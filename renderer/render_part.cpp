@@ -14,7 +14,6 @@
 #include "renderer/render_option_fields.h"
 #include "renderer/scene_digest.h"
 #include "renderer/scene_validation.h"
-#include "renderer/shader_lib.h"
 
 namespace glint {
 namespace {
@@ -282,16 +281,6 @@ std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
     problems.push_back(files[covering].string() + " has samples up to " + std::to_string(covered) +
                        ", beyond the " + std::to_string(total) + " asked for");
   return problems;
-}
-
-Image tonemap_image(const Image& linear, const DisplaySettings& display) {
-  Image out = linear;
-  const int mode = display.tonemap == Tonemap::filmic ? gpu::TONEMAP_FILMIC : gpu::TONEMAP_LINEAR;
-  for (size_t i = 0; i < out.pixels.size(); i += 4) {
-    for (int c = 0; c < 3; ++c) out.pixels[i + c] = gpu::tonemap_channel(linear.pixels[i + c], display.exposure, mode);
-    out.pixels[i + 3] = 1.0f;
-  }
-  return out;
 }
 
 }  // namespace glint

@@ -96,7 +96,4 @@ std::vector<std::string> merge_problems(const std::vector<PartInfo>& parts,
                                         const std::vector<std::filesystem::path>& files,
                                         int64_t total = 0);
 
-// The display image of a linear one, exactly as the tonemap pass makes it (shaders/lib/tonemap.glsl).
-Image tonemap_image(const Image& linear, const DisplaySettings& display);
-
 }  // namespace glint

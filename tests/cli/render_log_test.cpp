@@ -14,6 +14,7 @@
 #include "app/render_command.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "tests/furnace_scene.h"
 #include "tests/temp_dir.h"
 
 namespace glint {
@@ -58,18 +59,7 @@ std::vector<long long> spp_column(const std::vector<Row>& rows) {
   return s;
 }
 
-// A white Lambertian sphere under a constant environment L: every pixel is exactly L (see the
-// white furnace in tests/gl/renderer_test.cpp), so its reference is a constant image.
-Scene furnace_scene() {
-  Scene s;
-  s.camera.position = {0, 0, 5};
-  s.camera.target = {0, 0, 0};
-  s.film = {32, 32};
-  s.environment.color = {0.25f, 0.5f, 1.0f};
-  s.materials.push_back({.name = "white", .color = {1, 1, 1}});
-  s.spheres.push_back({.name = "ball", .center = {0, 0, 0}, .radius = 1.5f, .material = "white"});
-  return s;
-}
+using test::furnace_scene;
 
 Image constant_image(int w, int h, float r, float g, float b) {
   Image img;

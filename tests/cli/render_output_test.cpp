@@ -15,6 +15,7 @@
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
 #include "renderer/project_file.h"
+#include "tests/furnace_scene.h"
 #include "tests/small_tmpfs.h"
 #include "tests/temp_dir.h"
 
@@ -47,16 +48,7 @@ std::string read_bytes(const fs::path& file) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-Scene furnace_scene(int width = 32, int height = 32) {
-  Scene s;
-  s.camera.position = {0, 0, 5};
-  s.camera.target = {0, 0, 0};
-  s.film = {width, height};
-  s.environment.color = {0.25f, 0.5f, 1.0f};
-  s.materials.push_back({.name = "white", .color = {1, 1, 1}});
-  s.spheres.push_back({.name = "ball", .center = {0, 0, 0}, .radius = 1.5f, .material = "white"});
-  return s;
-}
+using test::furnace_scene;
 
 Image constant_image(int w, int h) {
   Image img;

@@ -9,22 +9,14 @@
 #include "editor/export_job.h"
 #include "renderer/gl_context.h"
 #include "renderer/scene_validation.h"
+#include "tests/furnace_scene.h"
 #include "tests/small_tmpfs.h"
 #include "tests/temp_dir.h"
 
 namespace glint {
 namespace {
 
-Scene furnace_scene() {
-  Scene s;
-  s.camera.position = {0, 0, 5};
-  s.camera.target = {0, 0, 0};
-  s.film = {32, 32};
-  s.environment.color = {0.25f, 0.5f, 1.0f};
-  s.materials.push_back({.name = "white", .color = {1, 1, 1}});
-  s.spheres.push_back({.name = "ball", .center = {0, 0, 0}, .radius = 1.5f, .material = "white"});
-  return s;
-}
+using test::furnace_scene;
 
 TEST(ExportOutput, ReadOnlyFolderFailsWhenTheExportStarts) {
   test::SmallTmpfs tmpfs("64k");
