@@ -20,6 +20,30 @@ inline long parse_integer_option(const std::string& option, const std::string& t
   throw UsageError{integer_expected(option, lo, hi, text)};
 }
 
+// One argument of a command whose options are tables (glint render, glint farm): `flags` of
+// (name, void set(Options&)) and `values` of (name, void set(Options&, option as typed, value)).
+// Sets argv[i] in `options` when it is one of them (an option with a value takes argv[i + 1]
+// and advances i) and returns true; throws UsageError for any other argument that starts with
+// '-', and returns false for the rest (the command's positional arguments).
+template <class Options, class Flags, class Values>
+bool parse_table_option(Options& options, const Flags& flags, const Values& values, int argc, char** argv,
+                        int& i) {
+  const std::string a = argv[i];
+  for (const auto& [name, set] : flags)
+    if (a == name) {
+      set(options);
+      return true;
+    }
+  for (const auto& [name, set] : values)
+    if (a == name) {
+      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
+      set(options, a, argv[++i]);
+      return true;
+    }
+  if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
+  return false;
+}
+
 // Fills `options` from `parse(argc, argv)` (which throws UsageError) and returns -1 to go on,
 // or the exit code once the help or a usage error has been printed.
 template <class Options, class Parse>

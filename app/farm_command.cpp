@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "app/command_line.h"
@@ -65,12 +66,92 @@ constexpr size_t kMaxArrayChars = 16384;
 struct Options {
   std::string command;  // slurm or status
   FarmPlan plan;
+  bool spp_given = false, parts_given = false;
   bool resume = false, dry_run = false;
 };
+
+// ---- Parsing: a table of the options (as glint render's), then the checks of them together.
 
 // A path that goes into a script: one line, and (the farm folder) no backslash.
 void check_script_path(const std::string& what, const std::string& path) {
   if (const auto problem = script_text_problem(path)) throw UsageError{what + " " + *problem};
+}
+
+using Flag = void (*)(Options&);
+const std::pair<const char*, Flag> kFlags[] = {
+    {"--resume", [](Options& o) { o.resume = true; }},
+    {"--dry-run", [](Options& o) { o.dry_run = true; }},
+};
+
+// An option with a value: (options, the option as typed, its value).
+using Text = const std::string&;
+using Setter = void (*)(Options&, Text, Text);
+const std::pair<const char*, Setter> kValueOptions[] = {
+    {"-o", [](Options& o, Text, Text v) { o.plan.output = v; }},
+    {"--output", [](Options& o, Text, Text v) { o.plan.output = v; }},
+    {"--spp",
+     [](Options& o, Text a, Text v) {
+       o.plan.spp = parse_integer_option(a, v, 1, 1L << 32);
+       o.spp_given = true;
+     }},
+    {"--parts",
+     [](Options& o, Text a, Text v) {
+       o.plan.parts = static_cast<int>(parse_integer_option(a, v, 1, kMaxFarmParts));
+       o.parts_given = true;
+     }},
+    {"--width", [](Options& o, Text a, Text v) { o.plan.width = parse_integer_option(a, v, 1, 16384); }},
+    {"--height", [](Options& o, Text a, Text v) { o.plan.height = parse_integer_option(a, v, 1, 16384); }},
+    {"--partition",
+     [](Options& o, Text, Text v) {
+       o.plan.partition = v;
+       if (const auto problem = partition_problem(o.plan.partition))
+         throw UsageError{"--partition '" + o.plan.partition + "': " + *problem};
+     }},
+    {"--gpus-per-task",
+     [](Options& o, Text a, Text v) {
+       o.plan.gpus_per_task = static_cast<int>(parse_integer_option(a, v, 1, kMaxGpusPerTask));
+     }},
+};
+
+// Reads argv[i] (and its value, advancing i) into `o`.
+void parse_argument(Options& o, int argc, char** argv, int& i) {
+  if (parse_table_option(o, kFlags, kValueOptions, argc, argv, i)) return;
+  const std::string a = argv[i];
+  if (!o.plan.project.empty()) throw UsageError{"unexpected argument '" + a + "'"};
+  o.plan.project = a;
+}
+
+// The output, and its farm folder beside it: both go into the scripts.
+void check_output(const Options& o) {
+  if (o.plan.output.empty()) throw UsageError{"no output given (-o OUT.exr|.png|.hdr)"};
+  if (const auto problem = output_format_problem(o.plan.output))
+    throw UsageError{"output '" + o.plan.output + "' " + *problem};
+  check_script_path("-o", o.plan.output);
+  if (const auto problem = farm_folder_problem(farm_folder(o.plan.output)))
+    throw UsageError{"-o: the farm folder " + farm_folder(o.plan.output).string() + " " + *problem};
+}
+
+// Whether anything of the render itself is given (which only a new farm takes).
+bool render_options_given(const Options& o) {
+  return !o.plan.project.empty() || o.spp_given || o.parts_given || o.plan.width || o.plan.height ||
+         !o.plan.partition.empty() || o.plan.gpus_per_task;
+}
+
+// A new farm needs the project, --spp and --parts; --resume and status take the render from
+// farm.json and nothing of it from the command line.
+void check_render_options(const Options& o) {
+  if (o.command != "slurm" || o.resume) {
+    if (render_options_given(o))
+      throw UsageError{std::string(o.resume ? "--resume" : "status") +
+                       " takes the render from OUT.farm/farm.json: give only -o OUT"};
+    return;
+  }
+  if (o.plan.project.empty()) throw UsageError{"no project given"};
+  check_script_path("the project path", o.plan.project);
+  if (!o.spp_given) throw UsageError{"--spp N is needed"};
+  if (!o.parts_given) throw UsageError{"--parts K is needed"};
+  if (o.plan.parts > o.plan.spp)
+    throw UsageError{"--parts " + std::to_string(o.plan.parts) + " is more than --spp " + std::to_string(o.plan.spp)};
 }
 
 Options parse(int argc, char** argv) {
@@ -78,49 +159,13 @@ Options parse(int argc, char** argv) {
   if (argc < 1) throw UsageError{"give slurm or status"};
   o.command = argv[0];
   if (o.command != "slurm" && o.command != "status") throw UsageError{"unknown farm command '" + o.command + "'"};
-  bool spp = false, parts = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
-      return argv[++i];
-    };
-    if (a == "-o" || a == "--output") o.plan.output = value();
-    else if (a == "--spp") o.plan.spp = parse_integer_option(a, value(), 1, 1L << 32), spp = true;
-    else if (a == "--parts") o.plan.parts = static_cast<int>(parse_integer_option(a, value(), 1, kMaxFarmParts)), parts = true;
-    else if (a == "--width") o.plan.width = parse_integer_option(a, value(), 1, 16384);
-    else if (a == "--height") o.plan.height = parse_integer_option(a, value(), 1, 16384);
-    else if (a == "--partition") {
-      o.plan.partition = value();
-      if (const auto problem = partition_problem(o.plan.partition))
-        throw UsageError{"--partition '" + o.plan.partition + "': " + *problem};
-    } else if (a == "--gpus-per-task") o.plan.gpus_per_task = static_cast<int>(parse_integer_option(a, value(), 1, kMaxGpusPerTask));
-    else if (a == "--resume") o.resume = true;
-    else if (a == "--dry-run") o.dry_run = true;
-    else if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
-    else if (o.plan.project.empty()) o.plan.project = a;
-    else throw UsageError{"unexpected argument '" + a + "'"};
-  }
-  if (o.plan.output.empty()) throw UsageError{"no output given (-o OUT.exr|.png|.hdr)"};
-  if (const auto problem = output_format_problem(o.plan.output))
-    throw UsageError{"output '" + o.plan.output + "' " + *problem};
-  check_script_path("-o", o.plan.output);
-  if (const auto problem = farm_folder_problem(farm_folder(o.plan.output)))
-    throw UsageError{"-o: the farm folder " + farm_folder(o.plan.output).string() + " " + *problem};
-  if (o.command == "slurm" && !o.resume) {
-    if (o.plan.project.empty()) throw UsageError{"no project given"};
-    check_script_path("the project path", o.plan.project);
-    if (!spp) throw UsageError{"--spp N is needed"};
-    if (!parts) throw UsageError{"--parts K is needed"};
-    if (o.plan.parts > o.plan.spp) throw UsageError{"--parts " + std::to_string(o.plan.parts) +
-                                                    " is more than --spp " + std::to_string(o.plan.spp)};
-  } else if (!o.plan.project.empty() || spp || parts || o.plan.width || o.plan.height ||
-             !o.plan.partition.empty() || o.plan.gpus_per_task) {
-    throw UsageError{std::string(o.resume ? "--resume" : "status") +
-                     " takes the render from OUT.farm/farm.json: give only -o OUT"};
-  }
+  for (int i = 1; i < argc; ++i) parse_argument(o, argc, argv, i);
+  check_output(o);
+  check_render_options(o);
   return o;
 }
+
+// ---- Running: status, a new farm, a resumed one.
 
 // The job id sbatch --parsable printed ("ID" or "ID;CLUSTER", perhaps after warnings); throws
 // with sbatch's output when it failed.

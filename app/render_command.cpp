@@ -267,15 +267,8 @@ const std::pair<const char*, Setter> kValueOptions[] = {
 
 // Reads argv[i] (and its value, advancing i) into `o`.
 void parse_argument(Options& o, int argc, char** argv, int& i) {
+  if (parse_table_option(o, kFlags, kValueOptions, argc, argv, i)) return;
   const std::string a = argv[i];
-  for (const auto& [name, set] : kFlags)
-    if (a == name) return set(o);
-  for (const auto& [name, set] : kValueOptions)
-    if (a == name) {
-      if (i + 1 >= argc) throw UsageError{a + " needs a value"};
-      return set(o, a, argv[++i]);
-    }
-  if (!a.empty() && a[0] == '-') throw UsageError{"unknown option " + a};
   if (!o.project.empty()) throw UsageError{"unexpected argument '" + a + "' (one project at a time)"};
   o.project = a;
 }
