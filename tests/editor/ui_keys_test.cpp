@@ -10,13 +10,12 @@
 
 #include "editor/scene_edits.h"
 #include "renderer/project_file.h"
+#include "tests/temp_dir.h"
 #include "ui_test_fixture.h"
 
 namespace glint {
 namespace {
 namespace fs = std::filesystem;
-
-using test::kProjects;
 
 class UiKeysTest : public test::UiTest {
  protected:
@@ -138,11 +137,14 @@ TEST_F(UiKeysTest, EscapeClosesAnOpenMenu) {
 
 // File > Examples lists every project of projects/ and opens the chosen one as an untitled copy
 // whose assets resolve from projects/; Ctrl+S then asks for a path and the example stays as
-// shipped.
+// shipped. (A copy of projects/: a regression must not overwrite the source tree's examples.)
 TEST_F(UiKeysTest, ExamplesMenuListsEveryProjectAndOpensUntitledCopies) {
+  test::TempDir dir;
+  fs::copy(test::kProjects, dir / "projects", fs::copy_options::recursive);
+  state_.flow.projects_dir = dir / "projects";
   state_.flow.native_dialogs = false;
   std::vector<std::string> shipped;
-  for (const fs::directory_entry& e : fs::directory_iterator(kProjects))
+  for (const fs::directory_entry& e : fs::directory_iterator(state_.flow.projects_dir))
     if (e.path().extension() == ".glint") shipped.push_back(e.path().stem().string());
   ASSERT_GE(shipped.size(), 8u);
 
@@ -167,13 +169,13 @@ TEST_F(UiKeysTest, ExamplesMenuListsEveryProjectAndOpensUntitledCopies) {
     EXPECT_NE(std::find(hovered.begin(), hovered.end(), list->GetID(name.c_str())), hovered.end())
         << name << " is not in File > Examples";
 
-  const fs::path example = kProjects / "cornell_box.glint";
+  const fs::path example = state_.flow.projects_dir / "cornell_box.glint";
   const std::string text = read_text(example);
   ASSERT_GE(cornell.x, 0);
   click(cornell);
   frame();
   EXPECT_TRUE(doc_.path().empty()) << doc_.path();
-  EXPECT_EQ(doc_.scene, load_project(example));  // assets resolved from projects/
+  EXPECT_EQ(doc_.scene, load_project(example));  // assets resolved from the examples' folder
   EXPECT_FALSE(doc_.dirty());
   doc_.scene.spheres[0].radius *= 1.5f;
   frame();
