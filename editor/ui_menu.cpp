@@ -84,6 +84,8 @@ void duplicate_selection(Document& doc) {
   if (copy >= 0) doc.selection = {sel.kind, copy};
 }
 
+void fly_keys(Document& doc, EditorState& state);  // below handle_shortcuts, which it serves
+
 }  // namespace
 
 void handle_shortcuts(Document& doc, EditorState& state) {
@@ -118,8 +120,13 @@ void handle_shortcuts(Document& doc, EditorState& state) {
     if (key_pressed(ImGuiKey_R)) state.tools.gizmo_mode = GizmoMode::rotate;
     if (key_pressed(ImGuiKey_T)) state.tools.gizmo_mode = GizmoMode::scale;
   }
-  if (!reach.fly || io.KeyShift) return;  // Shift+D duplicates; it does not fly right
-  // WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
+  if (reach.fly && !io.KeyShift) fly_keys(doc, state);  // Shift+D duplicates; it does not fly right
+}
+
+namespace {
+
+// WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
+void fly_keys(Document& doc, EditorState& state) {
   glm::vec3 move{0};
   if (ImGui::IsKeyDown(ImGuiKey_W)) move.z += 1;
   if (ImGui::IsKeyDown(ImGuiKey_S)) move.z -= 1;
@@ -130,11 +137,13 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   if (move != glm::vec3(0)) {
     Camera& cam = doc.scene.camera;
     float speed = std::max(0.5f, glm::length(cam.target - cam.position)) * 0.8f;
-    fly(cam, move * speed * std::min(io.DeltaTime, 0.1f));
+    fly(cam, move * speed * std::min(ImGui::GetIO().DeltaTime, 0.1f));
     state.tools.interacting = true;  // holding a key is one undo step, like a drag
     state.tools.navigated = true;
   }
 }
+
+}  // namespace
 
 void draw_main_menu(Document& doc, EditorState& state) {
   draw_help_windows(state);
