@@ -103,33 +103,38 @@ void Document::save(const std::filesystem::path& file) {
   end_frame(false);  // an edit of this very frame belongs to the history before the save
   save_project(scene, file);  // throws ProjectError; nothing below runs on failure
   const fs::path folder = fs::absolute(file).parent_path();  // what load_project will report
-  scene = rebase_asset_paths(scene, folder);
+  // The scene as the file now holds it (asset paths relative to the new folder).
+  auto as_saved = [&](const Scene& s) { return relative_asset_paths(rebase_asset_paths(s, folder), folder); };
+  scene = as_saved(scene);
   // The history moves along, so that undo after Save As reverts only the user's edits and
   // keeps the asset paths resolvable from the new folder.
-  for (State& s : undo_) s.scene = rebase_asset_paths(s.scene, folder);
-  for (State& s : redo_) s.scene = rebase_asset_paths(s.scene, folder);
+  for (State& s : undo_) s.scene = as_saved(s.scene);
+  for (State& s : redo_) s.scene = as_saved(s.scene);
   committed_ = {scene, selection};
   saved_ = scene;
   path_ = file;
-  last_step_camera_only_ = false;
+  pending_navigation_ = last_step_navigation_ = false;
 }
 
-void Document::end_frame(bool interacting) {
+void Document::end_frame(bool interacting, bool navigated) {
+  pending_navigation_ = pending_navigation_ || navigated;
   if (scene == committed_.scene) {
+    pending_navigation_ = false;  // navigated back to where it was: nothing to record
     // Remember the selection of the last quiet frame: an undo step restores the selection the
     // edit was made with (e.g. undoing a delete selects nothing stale).
     committed_.selection = selection;
     return;
   }
   if (interacting) return;  // a drag in progress becomes one step when it ends
-  const bool camera_only = same_but_camera(scene, committed_.scene);
-  if (camera_only && last_step_camera_only_ && !undo_.empty()) {
-    // Continues a run of camera moves: the step before the run stays the one to undo to.
+  const bool navigation = pending_navigation_ && same_but_camera(scene, committed_.scene);
+  pending_navigation_ = false;
+  if (navigation && last_step_navigation_ && !undo_.empty()) {
+    // Continues a run of navigation: the step before the run stays the one to undo to.
     redo_.clear();
     committed_ = {scene, selection};
     return;
   }
-  last_step_camera_only_ = camera_only;
+  last_step_navigation_ = navigation;
   undo_.push_back(std::move(committed_));
   if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
   redo_.clear();
@@ -139,7 +144,7 @@ void Document::end_frame(bool interacting) {
 void Document::undo() {
   end_frame(false);  // commit a pending edit first so that undo never loses it silently
   if (undo_.empty()) return;
-  last_step_camera_only_ = false;
+  pending_navigation_ = last_step_navigation_ = false;
   redo_.push_back({scene, selection});
   committed_ = std::move(undo_.back());
   undo_.pop_back();
@@ -151,7 +156,7 @@ void Document::undo() {
 void Document::redo() {
   end_frame(false);  // a new pending edit would clear redo_; then there is nothing to redo
   if (redo_.empty()) return;
-  last_step_camera_only_ = false;
+  pending_navigation_ = last_step_navigation_ = false;
   undo_.push_back({scene, selection});
   if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
   committed_ = std::move(redo_.back());

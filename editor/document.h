@@ -3,9 +3,10 @@
 // Undo is derived, like the renderer's change detection: at the end of every UI frame the
 // editor calls end_frame(); if the scene differs from the last committed state and no drag is
 // in progress, the previous state becomes an undo step. No widget has to register its edits,
-// and a whole drag (mouse held on a slider or the gizmo) is one step. A run of camera moves
-// (orbits, pans, zooms with nothing else changed) merges into one step, so that navigating
-// never buries the scene edits before it.
+// and a whole drag (mouse held on a slider or the gizmo) is one step. A run of navigation
+// (orbits, pans, zooms, flights with nothing else changed) merges into one step, so that
+// navigating never buries the scene edits before it; a deliberate camera setting (a typed field
+// of view, a click-to-focus) is a step of its own.
 #pragma once
 
 #include <filesystem>
@@ -37,12 +38,15 @@ class Document {
   std::string window_title() const;  // "name.glint* - Glint" (the * marks unsaved changes)
   bool dirty() const;                // the scene differs from what was last saved or opened
 
-  // Saves to `file` (Save As when it differs from path()), rebasing asset paths; afterwards the
-  // document is clean and path() is `file`. Throws ProjectError.
+  // Saves to `file` (Save As when it differs from path()), with asset paths relative to its
+  // folder (save_project); afterwards the document is clean, holds those paths, and path() is
+  // `file`. Throws ProjectError.
   void save(const std::filesystem::path& file);
 
   // Call once per UI frame, after the widgets ran. `interacting`: a drag is in progress.
-  void end_frame(bool interacting);
+  // `navigated`: the camera moved by navigation this frame (the edit pending since the last
+  // step then merges with a navigation step before it, when it only moved the camera).
+  void end_frame(bool interacting, bool navigated = false);
   bool can_undo() const { return !undo_.empty(); }
   bool can_redo() const { return !redo_.empty(); }
   void undo();
@@ -57,7 +61,8 @@ class Document {
   Scene saved_;        // the scene as last saved or opened
   State committed_;    // the state the undo history ends at
   std::vector<State> undo_, redo_;
-  bool last_step_camera_only_ = false;  // the newest undo step only moved the camera
+  bool pending_navigation_ = false;  // the edit not yet a step came from navigation
+  bool last_step_navigation_ = false;  // the newest undo step was navigation only
 };
 
 // The scene of File > New: a floor, one sphere, a grey environment, default camera.

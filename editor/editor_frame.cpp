@@ -16,7 +16,7 @@ void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport)
   const auto export_start = std::chrono::steady_clock::now();
   step_export(state, viewport.export_slice_seconds());
   viewport.add_trace_seconds(seconds_since(export_start));
-  doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting);
+  doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting, state.tools.navigated);
   show_viewport_image(state.viewport);
   ImGui::Render();
 }

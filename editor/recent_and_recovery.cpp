@@ -169,6 +169,8 @@ EditorSettings load_editor_settings(std::string& note, const fs::path& dir) {
     for (int i = 0; i < 4; ++i)
       if (p->get<std::string>() == kPreviewNames[i]) s.preview = static_cast<ViewportResolution>(i);
   if (auto e = j->find("export_dir"); e != j->end() && e->is_string()) s.export_dir = e->get<std::string>();
+  if (auto o = j->find("invert_vertical_orbit"); o != j->end() && o->is_boolean())
+    s.invert_vertical_orbit = o->get<bool>();
   return s;
 }
 
@@ -176,6 +178,7 @@ void save_editor_settings(const EditorSettings& settings, std::string& note, con
   nlohmann::json j;
   j["preview"] = kPreviewNames[static_cast<int>(settings.preview)];
   j["export_dir"] = settings.export_dir.string();
+  j["invert_vertical_orbit"] = settings.invert_vertical_orbit;
   note = write_json_atomic(settings_path(dir), j);
   if (!note.empty()) note += "; the settings are not saved";
 }

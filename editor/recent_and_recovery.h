@@ -49,6 +49,9 @@ std::vector<std::filesystem::path> remove_recent_file(const std::filesystem::pat
 struct EditorSettings {
   ViewportResolution preview = ViewportResolution::automatic;
   std::filesystem::path export_dir;  // the export dialog's last folder; empty: not chosen yet
+  // Vertical orbit: false is Blender's (a drag up moves the camera down, as if the scene were
+  // grabbed), true the other way.
+  bool invert_vertical_orbit = false;
   bool operator==(const EditorSettings&) const = default;
 };
 std::filesystem::path settings_path(const std::filesystem::path& dir = {});

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <system_error>
 
+#include "editor/object_placement.h"
 #include "renderer/texture_slots.h"
 
 namespace glint {
@@ -124,18 +125,19 @@ int add_sphere(Scene& scene) {
   const float d = placement_distance(scene.camera);
   Sphere s;
   s.name = unique_sphere_name(scene, "sphere");
-  s.center = scene.camera.position + v.forward * d;
   s.radius = d * 0.1f;
+  s.center = free_sphere_center(scene, scene.camera.position + v.forward * d, s.radius, v.right, v.up);
   s.material = default_material(scene);
   scene.spheres.push_back(s);
   return static_cast<int>(scene.spheres.size()) - 1;
 }
 
 int add_quad(Scene& scene) {
-  const View v = camera_view(scene.camera);
+  const View view = camera_view(scene.camera);
+  const AxisFrame v = nearest_axis_frame(view.forward, view.up);
   const float d = placement_distance(scene.camera);
   const float h = d * 0.1f;  // half the side, so it is as large as a new sphere
-  const glm::vec3 c = scene.camera.position + v.forward * d;
+  const glm::vec3 c = scene.camera.position + view.forward * d;
   Quad q;
   q.name = unique_quad_name(scene, "quad");
   q.material = default_material(scene);
@@ -190,12 +192,13 @@ int add_texture(Scene& scene, const std::filesystem::path& file) {
 
 int duplicate(Scene& scene, Selection what) {
   const glm::vec3 right = camera_view(scene.camera).right;
+  constexpr float kBeside = 1.25f;  // the object's width and a quarter: beside it, a gap between
   switch (what.kind) {
     case SelectionKind::sphere: {
       if (!in_range(scene.spheres, what.index)) return -1;
       Sphere s = scene.spheres[static_cast<size_t>(what.index)];
       s.name = unique_sphere_name(scene, s.name);
-      s.center += right * s.radius;  // half overlapping: clearly a second object
+      s.center += right * (2 * s.radius * kBeside);
       scene.spheres.push_back(s);
       return static_cast<int>(scene.spheres.size()) - 1;
     }
@@ -203,9 +206,15 @@ int duplicate(Scene& scene, Selection what) {
       if (!in_range(scene.quads, what.index)) return -1;
       Quad q = scene.quads[static_cast<size_t>(what.index)];
       q.name = unique_quad_name(scene, q.name);
-      float extent = 0;
-      for (const glm::vec3& p : q.corners) extent = std::max(extent, glm::length(p - quad_center(q)));
-      for (glm::vec3& p : q.corners) p += right * (0.5f * extent);
+      // Its width across the view; a quad seen edge-on has none there: its largest extent then.
+      const glm::vec3 c = quad_center(q);
+      float width = 0, extent = 0;
+      for (const glm::vec3& p : q.corners) {
+        width = std::max(width, 2 * std::abs(glm::dot(p - c, right)));
+        extent = std::max(extent, 2 * glm::length(p - c));
+      }
+      if (width < 0.05f * extent) width = extent;
+      for (glm::vec3& p : q.corners) p += right * (width * kBeside);
       scene.quads.push_back(q);
       return static_cast<int>(scene.quads.size()) - 1;
     }
@@ -371,20 +380,27 @@ void translate(Scene& scene, Selection what, glm::vec3 delta) {
     for (glm::vec3& p : scene.quads[static_cast<size_t>(what.index)].corners) p += delta;
 }
 
+glm::mat3 quad_frame(const Quad& quad) {
+  // Orthonormalise (exact for rectangles).
+  const glm::vec3 ex = quad.corners[2] - quad.corners[0];
+  const glm::vec3 ey = quad.corners[1] - quad.corners[0];
+  const float lx = glm::length(ex);
+  if (!(lx > 0) || !std::isfinite(lx)) return glm::mat3(1);
+  const glm::vec3 x = ex / lx;
+  glm::vec3 y = ey - x * glm::dot(ey, x);
+  if (!(glm::length(y) > 0) || !finite(y)) return glm::mat3(1);
+  y = glm::normalize(y);
+  return glm::mat3(x, y, glm::cross(x, y));
+}
+
 QuadPlacement quad_placement(const Quad& quad) {
   QuadPlacement out;
   out.center = quad_center(quad);
-  const glm::vec3 ex = quad.corners[2] - quad.corners[0];
-  const glm::vec3 ey = quad.corners[1] - quad.corners[0];
-  out.size = {glm::length(ex), glm::length(ey)};
+  out.size = {glm::length(quad.corners[2] - quad.corners[0]), glm::length(quad.corners[1] - quad.corners[0])};
   if (!(out.size.x > 0) || !(out.size.y > 0)) return out;
-  // Orthonormalise (exact for rectangles), then read the Euler angles of R = Rx Ry Rz whose
-  // columns are the frame's axes.
-  const glm::vec3 x = ex / out.size.x;
-  glm::vec3 y = ey - x * glm::dot(ey, x);
-  if (!(glm::length(y) > 0)) return out;
-  y = glm::normalize(y);
-  const glm::vec3 z = glm::cross(x, y);
+  // The Euler angles of R = Rx Ry Rz whose columns are the frame's axes.
+  const glm::mat3 frame = quad_frame(quad);
+  const glm::vec3 x = frame[0], y = frame[1], z = frame[2];
   float a, b, c;
   b = std::asin(std::clamp(z.x, -1.0f, 1.0f));  // R[row 0][col 2]
   if (std::abs(z.x) < 0.99999f) {
@@ -397,8 +413,11 @@ QuadPlacement quad_placement(const Quad& quad) {
   out.rotation_deg = glm::degrees(glm::vec3(a, b, c));
   // Angles within rounding of zero (atan2(-0, x) is -0, and an axis-aligned quad's frame is
   // off by an ulp) read as +0, so the panel never shows "-0.0 deg".
-  for (int k = 0; k < 3; ++k)
+  // A half turn reads as +180, whichever sign atan2 gave it.
+  for (int k = 0; k < 3; ++k) {
     if (std::abs(out.rotation_deg[k]) < 1e-3f) out.rotation_deg[k] = 0.0f;
+    if (out.rotation_deg[k] < -180 + 1e-3f) out.rotation_deg[k] = 180.0f;
+  }
   return out;
 }
 

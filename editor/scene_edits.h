@@ -28,15 +28,18 @@ std::string default_material(Scene& scene);
 std::vector<std::string> material_users(const Scene& scene, const std::string& material);
 
 // Adds an object in front of the camera (at the focus distance along the view, at least 1 unit
-// away, sized to a tenth of that distance). Returns its index.
+// away, sized to a tenth of that distance). Returns its index. A sphere goes to the nearest free
+// place in the view plane there (touching no sphere or quad) when that point is taken; a quad
+// faces the camera at the nearest right-angled orientation (its Euler angles whole quarter turns).
 int add_sphere(Scene& scene);
-int add_quad(Scene& scene);  // facing the camera
+int add_quad(Scene& scene);
 int add_material(Scene& scene, MaterialType type);
 // Adds a texture entry for an image file; the path is stored relative to scene.base_dir when it
 // lies below it. Returns the index (an existing entry for the same path is reused).
 int add_texture(Scene& scene, const std::filesystem::path& file);
 
-// Duplicates are offset slightly so that they are visible. Return the new index.
+// Duplicates of spheres and quads sit beside the original, to the camera's right by the object's
+// width and a quarter more (a gap that grows with it). Return the new index.
 int duplicate(Scene& scene, Selection what);
 // Deletes; a material in use or a texture in use is replaced by the default material / no
 // texture in the objects that used it (the UI asks first: material_users). Returns the
@@ -67,7 +70,10 @@ struct QuadPlacement {
   glm::vec2 size{1};
   glm::vec3 rotation_deg{0};
 };
-QuadPlacement quad_placement(const Quad& quad);  // exact for rectangles
+QuadPlacement quad_placement(const Quad& quad);  // exact for rectangles; angles in -180..180
+// The rotation of quad_placement: columns the unit x edge, the y edge made orthogonal to it, and
+// their cross product (the identity for a degenerate quad).
+glm::mat3 quad_frame(const Quad& quad);
 void set_quad_placement(Quad& quad, const QuadPlacement& placement);  // makes it a rectangle
 
 }  // namespace glint

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "editor/export_job.h"
 #include "editor/recent_and_recovery.h"
 #include "editor/render_stats_history.h"
+#include "editor/shown_values.h"
 #include "editor/thumbnails.h"
 #include "editor/viewport_frame.h"
 #include "renderer/render_options.h"
@@ -35,7 +37,8 @@ class ProgramWorker;
 // What a chosen file is for (native dialog or the typed-path prompt).
 enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output };
 // Actions behind the unsaved-changes guard.
-enum class DocAction { none, new_document, open_dialog, open_path, quit };
+// open_example: an example project as an untitled copy (open_example_copy).
+enum class DocAction { none, new_document, open_dialog, open_path, open_example, quit };
 
 // The viewport panel: where it is this frame, how it previews, and what it shows.
 struct ViewportView {
@@ -65,6 +68,9 @@ enum class GizmoMode { move, rotate, scale };
 struct ViewportTools {
   bool focus_tool = false;   // a click sets the focus distance instead of selecting
   bool interacting = false;  // a gizmo, camera or fly gesture is in progress (one undo step)
+  // The camera moved by navigation this frame (orbit, pan, zoom, fly): such moves merge into one
+  // undo step (Document::end_frame); a typed value or a click-to-focus is a step of its own.
+  bool navigated = false;
   GizmoMode gizmo_mode = GizmoMode::move;
   int gizmo_handle = -1;  // handle being dragged (an axis, a ring, the uniform scale circle), -1 none
   int gizmo_hover = -1;
@@ -94,7 +100,7 @@ struct DocumentFlow {
   bool native_dialogs = false; // tinyfd has a graphical backend
   std::vector<std::filesystem::path> recent_files;
   std::function<void(const std::filesystem::path&)> on_opened_or_saved;  // recent-file list
-  std::filesystem::path projects_dir;  // examples for the 1-4 keys
+  std::filesystem::path projects_dir;  // the examples of File > Examples
 
   // The typed-path prompt (when no native dialog exists).
   struct PathPrompt {
@@ -149,6 +155,9 @@ struct EditorState {
   ExportUi export_ui;
   Renaming renaming;
   DeletePrompt delete_prompt;
+  // The properties panel's Euler angles and emission form, kept as the user set them.
+  QuadRotationView shown_rotation;
+  EmissionView shown_emission;
   bool show_controls = false;  // Help > Controls
   bool show_about = false;     // Help > About
 
@@ -222,6 +231,12 @@ void draw_delete_prompt(Document& doc, EditorState& state);
 void settings_changed(EditorState& state);
 // The Help menu's windows: the controls sheet and About.
 void draw_help_windows(EditorState& state);
+// The rows of Help > Controls: every mouse gesture, key and menu path with an effect of its own.
+struct ControlLine {
+  const char* input;
+  const char* action;
+};
+std::span<const ControlLine> editor_controls();
 // A file dropped on the window: a project opens (asking about unsaved changes), an .hdr or
 // .exr becomes the environment, another image the colour texture of the selected object's
 // material (or of the selected material). Returns what it did, for the status bar.
@@ -244,8 +259,12 @@ void show_message(EditorState& state, const std::string& message);
 // that come while one shows are joined to it.
 void show_note(EditorState& state, const std::string& note);
 
-// The example project of key 1-4 (empty if projects_dir is unknown).
-std::filesystem::path example_project(const EditorState& state, int number);
+// File > Examples: the project files in projects_dir, sorted by name (empty when it is unknown
+// or unreadable).
+std::vector<std::filesystem::path> example_projects(const std::filesystem::path& projects_dir);
+// Opens an example as an untitled copy: its assets resolve from the example's folder, and Save
+// asks for a path, so that Ctrl+S never overwrites a shipped example.
+bool open_example_copy(Document& doc, EditorState& state, const std::filesystem::path& file);
 // Searches upwards from these folders for projects/default.glint; returns the projects folder.
 std::filesystem::path find_projects_dir(const std::vector<std::filesystem::path>& starts);
 

@@ -1,5 +1,6 @@
 // Document actions: new, open, save, save as, the unsaved-changes guard, choosing files (native
 // dialog or typed path), and the modals that go with them.
+#include <algorithm>
 #include <cstring>
 
 #include "editor/file_dialogs.h"
@@ -36,11 +37,26 @@ std::string project_relative(const Scene& scene, const fs::path& file) {
   return abs.string();
 }
 
+// "Saved FILE", and the images whose paths stayed absolute (no relative form from the project's
+// folder: another drive, on Windows), which break when the project moves.
+std::string saved_message(const Document& doc) {
+  std::string message = "Saved " + doc.path().string();
+  std::vector<std::string> absolute;
+  for (const Texture& t : doc.scene.textures)
+    if (fs::path(t.path).is_absolute()) absolute.push_back(t.path);
+  if (fs::path(doc.scene.environment.texture).is_absolute()) absolute.push_back(doc.scene.environment.texture);
+  if (!absolute.empty())
+    message += " (" + absolute.front() + (absolute.size() > 1 ? " and others" : "") +
+               " kept absolute: no relative path leads there from the project's folder)";
+  return message;
+}
+
 void perform(Document& doc, EditorState& state, DocAction action, const fs::path& path) {
   switch (action) {
     case DocAction::new_document: new_document(doc, state); break;
     case DocAction::open_dialog: choose_file(doc, state, FilePurpose::open_project); break;
     case DocAction::open_path: open_document(doc, state, path); break;
+    case DocAction::open_example: open_example_copy(doc, state, path); break;
     case DocAction::quit: state.flow.quit_approved = true; break;
     case DocAction::none: break;
   }
@@ -123,7 +139,7 @@ bool save_document(Document& doc, EditorState& state, bool save_as) {
   try {
     doc.save(doc.path());
     if (state.flow.on_opened_or_saved) state.flow.on_opened_or_saved(doc.path());
-    show_message(state, "Saved " + doc.path().string());
+    show_message(state, saved_message(doc));
     return true;
   } catch (const std::exception& e) {
     show_error(state, e.what());
@@ -174,7 +190,7 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
         if (path.extension().empty()) path += ".glint";
         doc.save(path);
         if (state.flow.on_opened_or_saved) state.flow.on_opened_or_saved(doc.path());
-        show_message(state, "Saved " + doc.path().string());
+        show_message(state, saved_message(doc));
         // A save that was asked for by the unsaved-changes prompt continues its action.
         DocAction next = state.flow.pending;
         state.flow.pending = DocAction::none;
@@ -297,11 +313,28 @@ void draw_document_modals(Document& doc, EditorState& state) {
   draw_delete_prompt(doc, state);
 }
 
-fs::path example_project(const EditorState& state, int number) {
-  static const char* const kExamples[] = {"textured_spheres", "emissive_mirror_glass",
-                                          "glass_glossy_checker", "roughness_ladder"};
-  if (number < 1 || number > 4 || state.flow.projects_dir.empty()) return {};
-  return state.flow.projects_dir / (std::string(kExamples[number - 1]) + ".glint");
+std::vector<fs::path> example_projects(const fs::path& projects_dir) {
+  std::vector<fs::path> found;
+  if (projects_dir.empty()) return found;
+  std::error_code ec;
+  for (fs::directory_iterator it(projects_dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".glint" && it->is_regular_file(ec)) found.push_back(it->path());
+  std::sort(found.begin(), found.end());
+  return found;
+}
+
+bool open_example_copy(Document& doc, EditorState& state, const fs::path& file) {
+  try {
+    // load_project sets base_dir to the example's folder: its assets resolve from there, and
+    // Save As rebases them to wherever the copy is saved.
+    doc = Document(load_project(file));
+    state.thumbnails.clear();
+    show_message(state, "Opened example " + file.stem().string() + " as an untitled copy (Save asks where to keep it)");
+    return true;
+  } catch (const std::exception& e) {
+    show_error(state, e.what());
+    return false;
+  }
 }
 
 fs::path find_projects_dir(const std::vector<fs::path>& starts) {

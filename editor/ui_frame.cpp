@@ -54,6 +54,7 @@ void draw_editor_ui(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
   state.viewport.framebuffer_scale = io.DisplayFramebufferScale.x > 0 ? io.DisplayFramebufferScale.x : 1.0f;
   state.tools.interacting = false;
+  state.tools.navigated = false;
 
   handle_shortcuts(doc, state);
   draw_main_menu(doc, state);

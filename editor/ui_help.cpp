@@ -5,37 +5,37 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
-#include "editor/ui_context.h"
 #include "renderer/texture_slots.h"
 
 namespace glint {
 namespace {
 
-struct Control {
-  const char* keys;
-  const char* action;
-};
-
-// The one list of the editor's controls (README's table says the same).
-constexpr Control kControls[] = {
-    {"Left drag (viewport)", "orbit around the target"},
-    {"Middle drag, Shift+left drag", "pan"},
+// The one list of the editor's controls (README's table says the same): every mouse gesture,
+// key and menu path that does something beyond a plain menu item.
+constexpr ControlLine kControls[] = {
+    {"Left drag on empty space, right drag", "orbit around the target (as Blender; View > Invert vertical orbit)"},
+    {"Middle drag, Shift + any drag", "pan"},
     {"Mouse wheel", "zoom (dolly towards the target)"},
-    {"W A S D, Q E", "fly forward/left/back/right, down/up"},
+    {"W A S D, Q E (pointer on the viewport)", "fly forward/left/back/right, down/up"},
     {"Click", "select (empty space: select nothing)"},
-    {"Ctrl+click", "set the focus distance on that surface"},
+    {"Ctrl+click, or View > Focus tool", "set the focus distance on that surface"},
     {"G, R, T", "gizmo mode: move, rotate, scale (also the viewport's buttons)"},
     {"Drag a gizmo arrow (move)", "move the selection along a world axis"},
     {"Drag a gizmo ring (rotate)", "turn a quad about that world axis through its centre"},
     {"Drag a square / the circle (scale)", "scale a quad along that edge / uniformly; a sphere's radius"},
     {"F", "frame the selection"},
+    {"Shift+D", "duplicate the selection, beside it"},
     {"Del", "delete the selection (a material in use asks)"},
-    {"1 2 3 4", "open an example project (asks about unsaved changes)"},
-    {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo (a run of camera moves is one step)"},
+    {"Click a number field", "type a value (Enter sets it, Escape reverts); drag it to change it"},
+    {"Escape", "close an open menu or list"},
+    {"Double-click / right-click in the outliner", "rename / rename, duplicate, delete"},
+    {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo (a run of orbits, pans, zooms, flights is one step)"},
     {"Ctrl+N, Ctrl+O", "new, open"},
     {"Ctrl+S, Ctrl+Shift+S", "save, save as"},
     {"Ctrl+Q", "quit (asks about unsaved changes)"},
+    {"File > Examples", "open an example project as an untitled copy"},
     {"Drop a file on the window", ".glint opens; .hdr/.exr: environment; image: colour texture"},
+    {"Drag a panel's tab / edge", "dock it elsewhere or float it / resize it"},
 };
 
 std::string lower_extension(const std::filesystem::path& file) {
@@ -46,22 +46,26 @@ std::string lower_extension(const std::filesystem::path& file) {
 
 }  // namespace
 
+std::span<const ControlLine> editor_controls() { return kControls; }
+
 void settings_changed(EditorState& state) {
   if (state.on_settings_changed) state.on_settings_changed(state.settings);
 }
 
 void draw_help_windows(EditorState& state) {
   if (state.show_controls) {
-    ImGui::SetNextWindowSize(ImVec2(ui_units(560), 0), ImGuiCond_Appearing);
-    if (ImGui::Begin("Controls", &state.show_controls, ImGuiWindowFlags_NoSavedSettings)) {
-      if (ImGui::BeginTable("controls", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+    // As wide and tall as its table: every row shows whole.
+    if (ImGui::Begin("Controls", &state.show_controls,
+                     ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize)) {
+      if (ImGui::BeginTable("controls", 2,
+                            ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("Input");
         ImGui::TableSetupColumn("Action");
         ImGui::TableHeadersRow();
-        for (const Control& c : kControls) {
+        for (const ControlLine& c : kControls) {
           ImGui::TableNextRow();
           ImGui::TableNextColumn();
-          ImGui::TextUnformatted(c.keys);
+          ImGui::TextUnformatted(c.input);
           ImGui::TableNextColumn();
           ImGui::TextUnformatted(c.action);
         }

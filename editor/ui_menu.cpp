@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include <imgui_internal.h>  // the hovered and active windows: where a key goes
 
 #include "editor/camera_control.h"
 #include "renderer/material_types.h"
@@ -49,13 +52,50 @@ void frame_selection(Document& doc) {
   frame(doc.scene.camera, c, r * kFrameMargin / narrow);
 }
 
+// Which single-key shortcuts may act on the scene this frame. Keys go where the pointer is,
+// as in Blender: over the viewport (or over no window) all of them; over the outliner, which
+// lists the scene's objects, Delete, F, Shift+D and the gizmo keys but not the fly keys; over any
+// other panel (properties, statistics, menu bar) none, nor while a panel's widget is held.
+struct SceneKeys {
+  bool edit = false;
+  bool fly = false;
+};
+
+bool within(const ImGuiWindow* window, const char* name) {
+  for (; window; window = window->ParentWindow)
+    if (std::strcmp(window->Name, name) == 0) return true;
+  return false;
+}
+
+SceneKeys scene_keys() {
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  if (g.ActiveId != 0 && !within(g.ActiveIdWindow, kViewportWindow)) return {};
+  const ImGuiWindow* hovered = g.HoveredWindow;
+  if (!hovered || within(hovered, kViewportWindow)) return {true, true};
+  if (within(hovered, kOutlinerWindow)) return {true, false};
+  return {};
+}
+
+void duplicate_selection(Document& doc) {
+  const Selection sel = doc.selection;
+  if (sel.kind == SelectionKind::none || sel.kind == SelectionKind::camera || sel.kind == SelectionKind::environment)
+    return;
+  const int copy = duplicate(doc.scene, sel);
+  if (copy >= 0) doc.selection = {sel.kind, copy};
+}
+
+void fly_keys(Document& doc, EditorState& state);  // below handle_shortcuts, which it serves
+
 }  // namespace
 
 void handle_shortcuts(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
-  // Text fields own the keyboard; a modal popup blocks the editor's shortcuts too.
-  if (io.WantTextInput || ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel))
-    return;
+  // Text fields own the keyboard (Escape there reverts the field).
+  if (io.WantTextInput) return;
+  // Escape closes an open menu, combo or context menu; a modal popup handles its own keys.
+  const bool popup_open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
+  if (popup_open && key_pressed(ImGuiKey_Escape) && !ImGui::GetTopMostPopupModal()) ImGui::ClosePopupsExceptModals();
+  if (popup_open) return;  // the editor's shortcuts wait until it is closed
   if (io.KeyCtrl) {
     if (key_pressed(ImGuiKey_Z)) {
       if (io.KeyShift) { if (doc.can_redo()) doc.redo(); }
@@ -68,8 +108,11 @@ void handle_shortcuts(Document& doc, EditorState& state) {
     if (key_pressed(ImGuiKey_Q)) request_action(doc, state, DocAction::quit);
     return;
   }
+  const SceneKeys reach = scene_keys();
+  if (!reach.edit) return;
   if (key_pressed(ImGuiKey_Delete)) delete_item(doc, state, doc.selection);
   if (key_pressed(ImGuiKey_F)) frame_selection(doc);
+  if (io.KeyShift && key_pressed(ImGuiKey_D)) duplicate_selection(doc);  // Blender's Shift+D
   // The gizmo's mode: G and R as in Blender; its S (scale) flies back here, so T. Not while a
   // gizmo drag is under way (it is measured in the mode it started in).
   if (state.tools.gizmo_handle < 0) {
@@ -77,13 +120,13 @@ void handle_shortcuts(Document& doc, EditorState& state) {
     if (key_pressed(ImGuiKey_R)) state.tools.gizmo_mode = GizmoMode::rotate;
     if (key_pressed(ImGuiKey_T)) state.tools.gizmo_mode = GizmoMode::scale;
   }
-  for (int n = 1; n <= 4; ++n)
-    if (key_pressed(ImGuiKey(ImGuiKey_1 + n - 1))) {
-      auto file = example_project(state, n);
-      if (file.empty()) show_error(state, "The example projects folder was not found.");
-      else request_action(doc, state, DocAction::open_path, file);
-    }
-  // WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
+  if (reach.fly && !io.KeyShift) fly_keys(doc, state);  // Shift+D duplicates; it does not fly right
+}
+
+namespace {
+
+// WASD fly as in the original program (Q/E down/up), speed relative to the target distance.
+void fly_keys(Document& doc, EditorState& state) {
   glm::vec3 move{0};
   if (ImGui::IsKeyDown(ImGuiKey_W)) move.z += 1;
   if (ImGui::IsKeyDown(ImGuiKey_S)) move.z -= 1;
@@ -94,10 +137,13 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   if (move != glm::vec3(0)) {
     Camera& cam = doc.scene.camera;
     float speed = std::max(0.5f, glm::length(cam.target - cam.position)) * 0.8f;
-    fly(cam, move * speed * std::min(io.DeltaTime, 0.1f));
+    fly(cam, move * speed * std::min(ImGui::GetIO().DeltaTime, 0.1f));
     state.tools.interacting = true;  // holding a key is one undo step, like a drag
+    state.tools.navigated = true;
   }
 }
+
+}  // namespace
 
 void draw_main_menu(Document& doc, EditorState& state) {
   draw_help_windows(state);
@@ -111,15 +157,10 @@ void draw_main_menu(Document& doc, EditorState& state) {
       ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Examples", !state.flow.projects_dir.empty())) {
-      for (int n = 1; n <= 4; ++n) {
-        auto file = example_project(state, n);
-        std::string key = std::to_string(n);
-        if (ImGui::MenuItem(file.stem().string().c_str(), key.c_str()))
-          request_action(doc, state, DocAction::open_path, file);
-      }
-      ImGui::Separator();
-      if (ImGui::MenuItem("default")) request_action(doc, state, DocAction::open_path, state.flow.projects_dir / "default.glint");
-      if (ImGui::MenuItem("cornell_box")) request_action(doc, state, DocAction::open_path, state.flow.projects_dir / "cornell_box.glint");
+      // Each opens as an untitled copy: Save asks where to keep it (the examples stay as shipped).
+      for (const std::filesystem::path& file : example_projects(state.flow.projects_dir))
+        if (ImGui::MenuItem(file.stem().string().c_str()))
+          request_action(doc, state, DocAction::open_example, file);
       ImGui::EndMenu();
     }
     ImGui::Separator();
@@ -137,8 +178,7 @@ void draw_main_menu(Document& doc, EditorState& state) {
     ImGui::Separator();
     bool object = doc.selection.kind != SelectionKind::none && doc.selection.kind != SelectionKind::camera &&
                   doc.selection.kind != SelectionKind::environment;
-    if (ImGui::MenuItem("Duplicate", nullptr, false, object))
-      doc.selection.index = duplicate(doc.scene, doc.selection);
+    if (ImGui::MenuItem("Duplicate", "Shift+D", false, object)) duplicate_selection(doc);
     if (ImGui::MenuItem("Delete", "Del", false, object)) delete_item(doc, state, doc.selection);
     ImGui::EndMenu();
   }
@@ -164,6 +204,7 @@ void draw_main_menu(Document& doc, EditorState& state) {
       state.tools.gizmo_mode = GizmoMode::scale;
     ImGui::Separator();
     ImGui::MenuItem("Focus tool (click sets focus)", nullptr, &state.tools.focus_tool);
+    if (ImGui::MenuItem("Invert vertical orbit", nullptr, &state.settings.invert_vertical_orbit)) settings_changed(state);
     if (ImGui::MenuItem("Camera")) doc.selection = {SelectionKind::camera, -1};
     if (ImGui::MenuItem("Environment")) doc.selection = {SelectionKind::environment, -1};
     ImGui::EndMenu();

@@ -1,5 +1,6 @@
 // The properties panel: whatever is selected (sphere, quad, material, texture, environment,
 // camera), and below it the display settings, which only re-run the tonemap pass.
+#include <cfloat>
 #include <cstdio>
 
 #include "renderer/material_types.h"
@@ -14,6 +15,8 @@ namespace glint {
 namespace {
 
 constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp;
+// Numbers are drag fields, never sliders: a click without a drag types a value (Blender's way,
+// io.ConfigDragClickToInputText), where a slider would jump to the clicked position.
 
 // The widgets below are made by hand: a field added to a table of renderer/scene_fields.h
 // fails to compile here until the panel has a widget for it (or says why not).
@@ -102,7 +105,7 @@ void sphere_properties(Document& doc, EditorState& state, int i) {
   Sphere& s = doc.scene.spheres[i];
   name_field(doc, state, doc.selection);
   ImGui::DragFloat3("Centre", &s.center.x, 0.01f);
-  tip("World position of the centre (drag, or Ctrl+click to type).");
+  tip("World position of the centre (drag, or click to type).");
   ImGui::DragFloat("Radius", &s.radius, 0.005f, 1e-4f, 1e6f, "%.4f", kClamp);
   tip("Radius in world units.");
   material_combo(doc, s.material);
@@ -114,13 +117,17 @@ void quad_properties(Document& doc, EditorState& state, int i) {
   material_combo(doc, q.material);
   section_title("Placement");
   QuadPlacement p = quad_placement(q);
+  p.rotation_deg = shown_rotation(state.shown_rotation, i, q);  // as typed, not re-derived
   bool changed = ImGui::DragFloat3("Centre", &p.center.x, 0.01f);
   tip("World position of the quad's centre.");
   changed |= ImGui::DragFloat2("Size", &p.size.x, 0.01f, 1e-3f, 1e6f, "%.3f", kClamp);
   tip("Lengths of the edges p0-p2 (x) and p0-p1 (y).");
   changed |= ImGui::DragFloat3("Rotation", &p.rotation_deg.x, 0.5f, -360, 360, "%.1f deg");
   tip("Orientation as X-Y-Z Euler angles in degrees.");
-  if (changed) set_quad_placement(q, p);
+  if (changed) {
+    set_quad_placement(q, p);
+    remember_rotation(state.shown_rotation, i, q, p.rotation_deg);
+  }
   if (ImGui::TreeNode("Corners")) {
     for (int c = 0; c < 4; ++c) {
       char label[16];
@@ -161,18 +168,17 @@ void material_properties(Document& doc, EditorState& state, int i) {
     texture_slot(doc, state, i, &Material::color_texture);
   }
   if (uses_field(m.type, kFieldEmission)) {
-    ImGui::ColorEdit3("Emission", &m.emission.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
-    tip("Emitted radiance (linear RGB, may exceed 1): black for no light.");
-    float strength = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
-    if (strength > 0 && ImGui::DragFloat("Strength", &strength, 0.05f, 1e-3f, 1e4f, "%.3f", kClamp)) {
-      float old = std::max(m.emission.x, std::max(m.emission.y, m.emission.z));
-      m.emission *= strength / old;  // scales the colour, keeping its hue
-    }
-    if (strength > 0) tip("Scales the emission, keeping its hue.");
+    // As in Blender: a colour (0 to 1) and a separate, unbounded strength; emission = both.
+    EmissionForm form = shown_emission(state.shown_emission, i, m.emission);
+    bool changed = ImGui::ColorEdit3("Emission", &form.colour.x, ImGuiColorEditFlags_Float);
+    tip("Colour of the emitted light (linear RGB, 0 to 1); Strength says how bright.");
+    changed |= ImGui::DragFloat("Strength", &form.strength, 0.05f, 0, FLT_MAX, "%.3f", kClamp);
+    tip("Emitted radiance = colour x strength: 0 emits no light; there is no upper limit.");
+    if (changed) m.emission = set_emission(state.shown_emission, i, form);
     texture_slot(doc, state, i, &Material::emission_texture);
   }
   if (uses_field(m.type, kFieldRoughness)) {
-    ImGui::SliderFloat("Roughness", &m.roughness, 0, 1, "%.3f", kClamp);
+    ImGui::DragFloat("Roughness", &m.roughness, 0.005f, 0, 1, "%.3f", kClamp);
     tip("Microfacet roughness (GGX alpha = roughness^2): 0 is perfectly smooth.");
     texture_slot(doc, state, i, &Material::roughness_texture);
   }
@@ -181,7 +187,7 @@ void material_properties(Document& doc, EditorState& state, int i) {
     tip("Index of refraction: sets the Fresnel reflectance (1.5 is glass).");
   }
   if (uses_field(m.type, kFieldOpacity)) {
-    ImGui::SliderFloat("Opacity", &m.opacity, 0, 1, "%.3f", kClamp);
+    ImGui::DragFloat("Opacity", &m.opacity, 0.005f, 0, 1, "%.3f", kClamp);
     tip("Coverage: below 1, rays pass through the surface with that probability (cut-outs).");
   }
   int users = 0;
@@ -268,7 +274,7 @@ void camera_properties(Document& doc) {
   tip("Where the camera is (world units).");
   ImGui::DragFloat3("Target", &c.target.x, 0.01f);
   tip("The point it looks at (orbit turns around it).");
-  ImGui::SliderFloat("Field of view", &c.vfov_deg, 1, 150, "%.1f deg", kClamp);
+  ImGui::DragFloat("Field of view", &c.vfov_deg, 0.2f, 1, 150, "%.1f deg", kClamp);
   tip("Vertical field of view of the film (the frame in the viewport).");
   ImGui::DragFloat("Aperture", &c.aperture_radius, 0.001f, 0, 10, "%.4f", kClamp);
   tip("Lens radius: 0 is a pinhole (all sharp); larger blurs what is off the focus distance.");
@@ -278,7 +284,7 @@ void camera_properties(Document& doc) {
   ImGui::TextWrapped("Ctrl+click in the viewport focuses there");
   ImGui::PopStyleColor();
   section_title("Render");
-  ImGui::SliderInt("Max bounces", &doc.scene.render.max_bounces, 0, 64, "%d", kClamp);
+  ImGui::DragInt("Max bounces", &doc.scene.render.max_bounces, 0.1f, 0, 64, "%d", kClamp);
   tip("Longest path, in scattering events (0: emitters and the sky only).");
   int seed = static_cast<int>(doc.scene.render.seed);
   if (ImGui::InputInt("Seed", &seed) && seed >= 0) doc.scene.render.seed = static_cast<uint32_t>(seed);
@@ -337,7 +343,7 @@ void draw_properties(Document& doc, EditorState& state) {
   // A drag field, not a slider: a slider's grab sits on its value text (at 0 stops, in the
   // middle of "0.00 stops").
   ImGui::DragFloat("Exposure", &s.display.exposure, 0.02f, -10, 10, "%+.2f stops", kClamp);
-  tip("Brightness in stops, -10 to +10: drag sideways, or Ctrl+click to type\n"
+  tip("Brightness in stops, -10 to +10: drag sideways, or click to type\n"
       "(re-runs only the tonemap: the samples are kept).");
   int tonemap = static_cast<int>(s.display.tonemap);
   static const char* const kTonemaps[] = {"filmic", "linear"};

@@ -150,8 +150,11 @@ void draw_viewport(Document& doc, EditorState& state) {
       if (tools.camera_moved && (d.x != 0 || d.y != 0)) {
         Camera& cam = doc.scene.camera;
         bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
+        // Orbit as in Blender, as if the scene were grabbed: a drag right turns it right, a drag
+        // up tilts its near side up (the camera goes down); View > Invert vertical orbit flips that.
         if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
-        else orbit(cam, -d.x * 0.008f, -d.y * 0.008f);
+        else orbit(cam, -d.x * 0.008f, d.y * 0.008f * (state.settings.invert_vertical_orbit ? -1 : 1));
+        tools.navigated = true;
       }
       if (tools.camera_moved) tools.interacting = true;
     } else {
@@ -162,7 +165,10 @@ void draw_viewport(Document& doc, EditorState& state) {
       tools.camera_button = -1;
     }
   }
-  if (hovered && io.MouseWheel != 0) dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
+  if (hovered && io.MouseWheel != 0) {
+    dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
+    tools.navigated = true;
+  }
 
   // The image goes under this window once the viewport has rendered (show_viewport_image),
   // with the film frame and the selection's outline, which are drawn there too.

@@ -1,5 +1,6 @@
 #include "renderer/project_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -209,6 +210,23 @@ std::string rebase_path(const std::string& path, const fs::path& from, const fs:
   return (ec || relative.empty() ? target : relative).generic_string();
 }
 
+// An absolute asset path as seen from `folder` (absolute, symbolic links resolved); the path
+// itself when it has no relative form (another root name).
+std::string relative_to_folder(const std::string& path, const fs::path& folder) {
+  fs::path target(path);
+  if (path.empty() || !target.is_absolute()) return path;
+  std::error_code ec;
+  // A `..` inside the path climbs from wherever its links lead: resolve it before comparing.
+  const bool climbs = std::any_of(target.begin(), target.end(), [](const fs::path& part) { return part == ".."; });
+  if (climbs) {
+    const fs::path resolved = fs::weakly_canonical(target, ec);
+    if (ec) return path;
+    target = resolved;
+  }
+  const fs::path relative = target.lexically_normal().lexically_relative(folder);
+  return relative.empty() ? path : relative.generic_string();
+}
+
 fs::path folder_identity(const fs::path& folder) {
   const fs::path absolute = fs::absolute(folder.empty() ? fs::current_path() : folder);
   std::error_code ec;
@@ -293,6 +311,19 @@ Scene rebase_asset_paths(const Scene& scene, const fs::path& new_base_dir) {
   return out;
 }
 
+Scene relative_asset_paths(const Scene& scene, const fs::path& folder) {
+  Scene out = scene;
+  bool any_absolute = false;
+  for_each_string(out, kAssetPath, [&](const std::string&, std::string& path) {
+    any_absolute = any_absolute || fs::path(path).is_absolute();
+  });
+  if (!any_absolute) return out;  // no file system calls for the common case
+  const fs::path from = folder_identity(folder);
+  for_each_string(out, kAssetPath,
+                  [&](const std::string&, std::string& path) { path = relative_to_folder(path, from); });
+  return out;
+}
+
 Scene load_project_text(const std::string& text, const std::string& file_label,
                         const fs::path& base_dir, bool check_files) {
   return scene_from_json(json_fields::parse_text(text, file_label), file_label, base_dir,
@@ -346,7 +377,8 @@ Scene load_project(const fs::path& file) {
 std::string save_project_text(const Scene& scene, const fs::path& file) {
   const std::string label = file.string();
   try {
-    const Scene rebased = rebase_asset_paths(scene, fs::absolute(file).parent_path());
+    const fs::path folder = fs::absolute(file).parent_path();
+    const Scene rebased = relative_asset_paths(rebase_asset_paths(scene, folder), folder);
     // JSON text is UTF-8: a path from a folder named in another encoding cannot be stored.
     if (const std::string bad = first_non_utf8_string(rebased); !bad.empty())
       throw ProjectError(label, bad, "is not valid UTF-8, which a JSON file cannot hold "

@@ -58,9 +58,17 @@ std::string project_file_text(const Scene& scene);
 // The editor's "Save As" applies this to its document after save_project.
 Scene rebase_asset_paths(const Scene& scene, const std::filesystem::path& new_base_dir);
 
+// The scene with its absolute asset paths made relative to `folder` (with `../` where needed),
+// so that a project moved or copied together with its assets keeps working; relative paths are
+// kept. The `../` steps climb from `folder` with its symbolic links resolved, as the system
+// resolves them when the file is opened. On POSIX systems every absolute path has such a form;
+// one on another drive (Windows: another root name) has none and stays absolute.
+Scene relative_asset_paths(const Scene& scene, const std::filesystem::path& folder);
+
 // The text that save_project writes to `file`, without writing anything (the in-memory half of
 // save_project; load_project_text is the other direction). Relative asset paths are rewritten
-// relative to the file's folder when it differs from scene.base_dir. Does not validate (the UI
+// relative to the file's folder when it differs from scene.base_dir, and absolute ones made
+// relative to it (relative_asset_paths). Does not validate (the UI
 // validates edits; the loader reports anything bad). Throws ProjectError (with the file name)
 // with the JSON path of a string that is not valid UTF-8 (a texture path in a folder named in
 // another encoding: JSON text cannot hold it).

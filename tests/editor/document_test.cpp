@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "editor/scene_edits.h"
 #include "editor_test_util.h"
 #include "renderer/project_file.h"
@@ -240,7 +242,7 @@ TEST(Document, ARunOfCameraMovesIsOneUndoStep) {
   const Scene edited = doc.scene;
   for (int i = 0; i < 30; ++i) {  // thirty separate orbit gestures
     doc.scene.camera.position.x += 0.1f;
-    doc.end_frame(false);
+    doc.end_frame(false, /*navigated=*/true);
   }
   const Scene orbited = doc.scene;
   doc.undo();  // all camera moves at once
@@ -256,11 +258,44 @@ TEST(Document, ARunOfCameraMovesIsOneUndoStep) {
   doc.end_frame(false);
   const Scene edited_again = doc.scene;
   doc.scene.camera.position.y += 0.5f;
-  doc.end_frame(false);
+  doc.end_frame(false, true);
   doc.undo();
   EXPECT_EQ(doc.scene, edited_again);
   doc.undo();
   EXPECT_EQ(doc.scene, orbited);
+}
+
+// Only navigation merges: a typed field of view, a typed aperture and a click-to-focus (camera
+// changes that are not navigation) are a step each, and navigation after them a step of its own.
+TEST(Document, DeliberateCameraSettingsAreStepsOfTheirOwn) {
+  Document doc;
+  std::vector<Scene> states{doc.scene};
+  doc.scene.camera.position.x += 0.3f;  // an orbit: navigation
+  doc.end_frame(false, true);
+  states.push_back(doc.scene);
+  doc.scene.camera.vfov_deg = 55;  // typed
+  doc.end_frame(false);
+  states.push_back(doc.scene);
+  doc.scene.camera.aperture_radius = 0.05f;  // typed
+  doc.end_frame(false);
+  states.push_back(doc.scene);
+  doc.scene.camera.focus_distance = 3.25f;  // a click-to-focus
+  doc.end_frame(false);
+  states.push_back(doc.scene);
+  for (int i = 0; i < 5; ++i) {  // an orbit drag over several frames, then released
+    doc.scene.camera.position.x += 0.1f;
+    doc.end_frame(/*interacting=*/true, true);
+  }
+  doc.end_frame(false);
+  doc.scene.camera.position.y += 0.2f;  // a zoom right after: the same run of navigation
+  doc.end_frame(false, true);
+  states.push_back(doc.scene);
+  for (size_t i = states.size() - 1; i > 0; --i) {
+    ASSERT_TRUE(doc.can_undo()) << i;
+    doc.undo();
+    EXPECT_EQ(doc.scene, states[i - 1]) << "undo step " << states.size() - i;
+  }
+  EXPECT_FALSE(doc.can_undo());
 }
 
 }  // namespace

@@ -84,17 +84,19 @@ TEST(AppState, DefaultFoldersFollowXdg) {
   else unsetenv("XDG_CONFIG_HOME");
 }
 
-TEST(EditorSettings, PreviewAndExportFolderAreRemembered) {
+TEST(EditorSettings, PreviewExportFolderAndOrbitAreRemembered) {
   TempDir dir;
   std::string note;
   EXPECT_EQ(load_editor_settings(note, dir.path()), EditorSettings{});  // none yet: the defaults
+  EXPECT_FALSE(EditorSettings{}.invert_vertical_orbit);  // Blender's orbit by default
   EditorSettings s;
   s.preview = ViewportResolution::half;
   s.export_dir = "/some/renders";
+  s.invert_vertical_orbit = true;
   save_editor_settings(s, note, dir.path());
   EXPECT_TRUE(fs::exists(dir / "settings.json"));
   EXPECT_EQ(load_editor_settings(note, dir.path()), s);
-  std::ofstream(dir / "settings.json") << R"({"preview": "sideways", "export_dir": 3})";
+  std::ofstream(dir / "settings.json") << R"({"preview": "sideways", "export_dir": 3, "invert_vertical_orbit": "yes"})";
   EXPECT_EQ(load_editor_settings(note, dir.path()), EditorSettings{});  // unknown values: defaults
   EXPECT_EQ(note, "");
   std::ofstream(dir / "settings.json") << "{ not json";

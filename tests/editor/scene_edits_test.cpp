@@ -66,7 +66,7 @@ TEST(SceneEdits, AddQuadFacesCamera) {
   const Quad& q = s.quads[static_cast<size_t>(i)];
   const glm::vec3 n = glm::normalize(glm::cross(q.corners[1] - q.corners[0], q.corners[2] - q.corners[0]));
   const glm::vec3 to_camera = glm::normalize(s.camera.position - *selection_center(s, {kQuad, i}));
-  EXPECT_GT(glm::dot(n, to_camera), 0.999f);
+  EXPECT_GT(glm::dot(n, to_camera), 0.99f);  // the camera looks down a little: the quad stays upright
   EXPECT_EQ(problems(s), "");
 }
 

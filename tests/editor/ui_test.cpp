@@ -270,23 +270,28 @@ TEST_F(UiTest, SaveAsThroughThePromptThenCtrlSThenReopen) {
   EXPECT_EQ(state_.flow.recent_files.size(), 0u);  // no recent-file hook set in this test
 }
 
-TEST_F(UiTest, UnsavedChangesPromptGuardsTheNumberKeys) {
+TEST_F(UiTest, UnsavedChangesPromptGuardsTheExamples) {
+  const fs::path example = kProjects / "emissive_mirror_glass.glint";
   doc_.scene.spheres[0].radius *= 2;
   frame();
   ASSERT_TRUE(doc_.dirty());
   const Scene edited = doc_.scene;
-  press(GLFW_KEY_2);
+  request_action(doc_, state_, DocAction::open_example, example);  // File > Examples
+  frame();
+  frame();
   EXPECT_TRUE(unsaved_prompt_open_);
   EXPECT_EQ(doc_.scene, edited);  // nothing replaced yet
   press(GLFW_KEY_ESCAPE);          // Cancel
   EXPECT_FALSE(unsaved_prompt_open_);
   EXPECT_EQ(doc_.scene, edited);
-  // Clean document: the key switches at once.
+  // Clean document: the example opens at once, as an untitled copy.
   doc_.undo();
   frame();
   ASSERT_FALSE(doc_.dirty());
-  press(GLFW_KEY_2);
-  EXPECT_EQ(doc_.path().filename(), "emissive_mirror_glass.glint");
+  request_action(doc_, state_, DocAction::open_example, example);
+  frame();
+  EXPECT_EQ(doc_.path(), fs::path());
+  EXPECT_EQ(doc_.scene, load_project(example));
   EXPECT_EQ(doc_.window_title().find('*'), std::string::npos);
 }
 
@@ -528,18 +533,6 @@ TEST_F(UiTest, StateFileNotesShowInTheStatusLine) {
 class UiUsabilityTest : public UiTest {
  protected:
   const FrameStats& stats() const { return state_.viewport.frame.stats; }
-  ImVec2 find(const char* window, const char* label, float x_offset = 60) {
-    ImGuiWindow* w = ImGui::FindWindowByName(window);
-    if (!w) return ImVec2(-1, -1);
-    const ImGuiID id = w->GetID(label);
-    for (float y = w->Pos.y + 4; y < w->Pos.y + w->Size.y; y += 6) {
-      const ImVec2 at(w->Pos.x + x_offset, y);
-      mouse_to(at);
-      frame();
-      if (ImGui::GetCurrentContext()->HoveredId == id) return at;
-    }
-    return ImVec2(-1, -1);
-  }
   bool window_active(const char* name) {
     ImGuiWindow* w = ImGui::FindWindowByName(name);
     return w && w->Active;
@@ -560,7 +553,7 @@ TEST_F(UiUsabilityTest, AutoPreviewKeepsAccumulatingWhileTheExposureIsDragged) {
   state_.viewport.resolution = ViewportResolution::automatic;  // the default mode
   doc_.selection = {SelectionKind::sphere, 0};  // a short panel: Display near its top
   frame();
-  const ImVec2 at = find("Properties", "Exposure");
+  const ImVec2 at = find_item("Properties", "Exposure");
   ASSERT_GE(at.x, 0) << "the Exposure slider was not found";
   EXPECT_TRUE(window_active("##Tooltip_00")) << "no tooltip on the Exposure slider";
   ImGuiIO& io = ImGui::GetIO();

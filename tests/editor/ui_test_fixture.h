@@ -90,6 +90,36 @@ class UiTest : public ::testing::Test {
     frame();
     test::set_modifiers(false, false);
   }
+  // Where an item of `window` (its ID there, e.g. GetID(label)) is hovered, scanning down a column
+  // `x_offset` in from the window's left; (-1, -1) when it is not.
+  ImVec2 find_item(const char* window, ImGuiID id, float x_offset = 60) {
+    ImGuiWindow* w = ImGui::FindWindowByName(window);
+    if (!w) return ImVec2(-1, -1);
+    for (float y = w->Pos.y + 4; y < w->Pos.y + w->Size.y; y += 6) {
+      const ImVec2 at(w->Pos.x + x_offset, y);
+      mouse_to(at);
+      frame();
+      if (ImGui::GetCurrentContext()->HoveredId == id) return at;
+    }
+    return ImVec2(-1, -1);
+  }
+  ImVec2 find_item(const char* window, const char* label, float x_offset = 60) {
+    ImGuiWindow* w = ImGui::FindWindowByName(window);
+    return w ? find_item(window, w->GetID(label), x_offset) : ImVec2(-1, -1);
+  }
+  // Text typed as the GLFW backend sends it: each character's key and the character itself.
+  void type(const std::string& text) {
+    ImGuiIO& io = ImGui::GetIO();
+    for (char c : text) {
+      ImGuiKey key = c == '-' ? ImGuiKey_Minus : c == '.' ? ImGuiKey_Period
+                   : c >= '0' && c <= '9' ? ImGuiKey(ImGuiKey_0 + (c - '0')) : ImGuiKey_None;
+      if (key != ImGuiKey_None) io.AddKeyEvent(key, true);
+      io.AddInputCharacter(static_cast<unsigned>(c));
+      frame();
+      if (key != ImGuiKey_None) io.AddKeyEvent(key, false);
+      frame();
+    }
+  }
   // Centre of button `n` (each `width` wide) in the last row of the auto-sized popup `name`.
   ImVec2 popup_button(const char* name, int n, float width) {
     ImGuiWindow* w = ImGui::FindWindowByName(name);

@@ -494,7 +494,7 @@ TEST(ProjectFile, SaveAsRewritesRelativeAssetPaths) {
   save_project(loaded, new_dir / "copy.glint");
   const Json doc = Json::parse(read_text(new_dir / "copy.glint"));
   EXPECT_EQ(doc["textures"][0]["path"], "../../a/assets/wood.png");
-  EXPECT_EQ(doc["textures"][2]["path"], (dir.path() / "absolute.png").string());
+  EXPECT_EQ(doc["textures"][2]["path"], "../../absolute.png");  // was absolute: now relative too
   EXPECT_EQ(doc["environment"]["texture"], "../../a/sky.hdr");
 
   const Scene copy = load_project(new_dir / "copy.glint");  // the files are still found
@@ -514,6 +514,44 @@ TEST(ProjectFile, SaveAsRewritesRelativeAssetPaths) {
   fs::create_directories(old_dir / "sub");
   save_project(scene, old_dir / "sub/../same.glint");
   EXPECT_EQ(load_project(old_dir / "same.glint").textures[0].path, "./assets/../assets/wood.png");
+}
+
+// Absolute asset paths are written relative to the project file, `../` included, so that a
+// project moved together with its assets keeps working; the loader resolves them against the
+// project's folder (not the current one). `../` climbs from the folder as the system resolves it
+// (through a symbolic link to the folder) and from a `..` inside an absolute path.
+TEST(ProjectFile, SavesAbsoluteAssetPathsRelativeToTheProject) {
+  TempDir dir;
+  const fs::path work = dir.path() / "work";
+  write_png(work / "shared/textures/t.png");
+  write_hdr(work / "project/hdr/sky.hdr");
+  Scene scene = full_scene(work / "project");
+  scene.textures = {{"wood", (work / "shared/textures/t.png").string()},
+                    {"rough", (work / "project/hdr/../../shared/textures/t.png").string()}};
+  scene.environment.texture = (work / "project/hdr/sky.hdr").string();
+  save_project(scene, work / "project/scene.glint");
+  const Json doc = Json::parse(read_text(work / "project/scene.glint"));
+  EXPECT_EQ(doc["textures"][0]["path"], "../shared/textures/t.png");
+  EXPECT_EQ(doc["textures"][1]["path"], "../shared/textures/t.png");
+  EXPECT_EQ(doc["environment"]["texture"], "hdr/sky.hdr");
+
+  // Moved elsewhere as a whole: everything is found at its new place.
+  const fs::path moved = dir.path() / "elsewhere/deeper";
+  fs::create_directories(moved.parent_path());
+  fs::rename(work, moved);
+  const Scene loaded = load_project(moved / "project/scene.glint");
+  EXPECT_TRUE(fs::equivalent(resolve_asset_path(loaded, loaded.textures[0].path), moved / "shared/textures/t.png"));
+  EXPECT_TRUE(fs::equivalent(resolve_asset_path(loaded, loaded.environment.texture), moved / "project/hdr/sky.hdr"));
+
+  // Saved through a link to its folder: `../` leaves the real folder, as the system does.
+  fs::create_directories(dir.path() / "links");
+  fs::create_directory_symlink(moved / "project", dir.path() / "links/project");
+  Scene linked = load_project(moved / "project/scene.glint");
+  linked.textures[0].path = (moved / "shared/textures/t.png").string();
+  save_project(linked, dir.path() / "links/project/via_link.glint");
+  const Scene via_link = load_project(dir.path() / "links/project/via_link.glint");  // throws if unresolved
+  EXPECT_EQ(via_link.textures[0].path, "../shared/textures/t.png");
+  EXPECT_TRUE(fs::equivalent(resolve_asset_path(via_link, via_link.textures[0].path), moved / "shared/textures/t.png"));
 }
 
 // The in-memory pair (the fuzz target's round trip): save_project_text is byte for byte what
