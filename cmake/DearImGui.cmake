@@ -1,46 +1,22 @@
 # Dear ImGui (docking branch) with its GLFW and OpenGL 3 backends and ImPlot, from their
 # published crates on crates.io (the dear-imgui-rs family bundles the C++ sources), fetched by
-# cargo (sparse index) at configure time, pinned to one version and checked against a SHA-256
-# here. Only their C++ files are compiled, as static libraries; nothing of them is copied into the
-# repository. docs/DESIGN.md §2.2 says why these crates.
+# cargo at configure time, pinned to one version and checked against a SHA-256 here
+# (CargoCrates.cmake). Only their C++ files are compiled, as static libraries. docs/DESIGN.md
+# §2.2 says why these crates.
 set(IMGUI_CRATES_VERSION 0.22.0)
 set(IMGUI_CRATES dear-imgui-sys dear-implot-sys)
 set(dear-imgui-sys_SHA256 7b82f66d6c4165fb1e40888e48765d7175ecf96b7c411d351304c8fa8ca6f365)
 set(dear-implot-sys_SHA256 510b1a02e89cf686b508c72df1d47ccf223b158f3efd862b5bae8536dcb63eac)
 
-find_program(CARGO_EXECUTABLE cargo HINTS "$ENV{HOME}/.cargo/bin" REQUIRED)
-set(_imgui_work "${CMAKE_BINARY_DIR}/_deps/imgui-fetch")
+include(${CMAKE_CURRENT_LIST_DIR}/CargoCrates.cmake)
 set(_imgui_deps "${CMAKE_BINARY_DIR}/_deps")
 set(_imgui_done "${_imgui_deps}/imgui-crates-${IMGUI_CRATES_VERSION}.checked")
 
 if(NOT EXISTS "${_imgui_done}")
-  file(MAKE_DIRECTORY "${_imgui_work}/src")
-  foreach(_f Cargo.toml Cargo.lock src/lib.rs)
-    configure_file("${CMAKE_SOURCE_DIR}/cmake/imgui-crates/${_f}" "${_imgui_work}/${_f}" COPYONLY)
-  endforeach()
-  if(DEFINED ENV{CARGO_HOME})
-    set(_cargo_home "$ENV{CARGO_HOME}")
-  else()
-    set(_cargo_home "$ENV{HOME}/.cargo")
-  endif()
-  message(STATUS "Fetching Dear ImGui crates ${IMGUI_CRATES_VERSION} with cargo")
-  execute_process(COMMAND "${CARGO_EXECUTABLE}" fetch --locked --manifest-path "${_imgui_work}/Cargo.toml"
-                  RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out)
-  if(NOT _rc EQUAL 0)
-    message(FATAL_ERROR "cargo fetch of the Dear ImGui crates ${IMGUI_CRATES_VERSION} failed:\n${_out}")
-  endif()
+  glint_cargo_fetch("the Dear ImGui crates ${IMGUI_CRATES_VERSION}" "${CMAKE_SOURCE_DIR}/cmake/imgui-crates"
+                    "${_imgui_deps}/imgui-fetch")
   foreach(_name ${IMGUI_CRATES})
-    file(GLOB _crates "${_cargo_home}/registry/cache/*/${_name}-${IMGUI_CRATES_VERSION}.crate")
-    list(LENGTH _crates _n)
-    if(_n EQUAL 0)
-      message(FATAL_ERROR "${_name}-${IMGUI_CRATES_VERSION}.crate not found under ${_cargo_home}/registry/cache")
-    endif()
-    list(GET _crates 0 _crate)
-    file(SHA256 "${_crate}" _sha)
-    if(NOT _sha STREQUAL ${_name}_SHA256)
-      message(FATAL_ERROR "${_crate}: SHA-256 ${_sha} does not match the pinned ${${_name}_SHA256}")
-    endif()
-    file(ARCHIVE_EXTRACT INPUT "${_crate}" DESTINATION "${_imgui_deps}")
+    glint_extract_crate(${_name} ${IMGUI_CRATES_VERSION} ${${_name}_SHA256} "${_imgui_deps}")
   endforeach()
   file(WRITE "${_imgui_done}" "checked\n")
 endif()

@@ -1,39 +1,16 @@
-# tinyfiledialogs from its published crate on crates.io, fetched by cargo (sparse index), pinned
-# to one version and checked against a SHA-256 here; its C files are compiled as a static library.
-# Nothing of it is copied into the repository.
+# tinyfiledialogs from its published crate on crates.io, fetched by cargo, pinned to one version
+# and checked against a SHA-256 here (CargoCrates.cmake); its C files are compiled as a static
+# library.
 set(TFD_VERSION 3.9.1)
 set(TFD_SHA256 e25fa0bc43a6566e2cc6d7ac96df3fa5a57beba34445bead1b368ba8fe9ca568)
 
-find_program(CARGO_EXECUTABLE cargo HINTS "$ENV{HOME}/.cargo/bin" REQUIRED)
-set(_tfd_work "${CMAKE_BINARY_DIR}/_deps/tinyfiledialogs-fetch")
+include(${CMAKE_CURRENT_LIST_DIR}/CargoCrates.cmake)
 set(_tfd_src "${CMAKE_BINARY_DIR}/_deps/tinyfiledialogs-${TFD_VERSION}")
 
 if(NOT EXISTS "${_tfd_src}/libtinyfiledialogs/tinyfiledialogs.c")
-  file(MAKE_DIRECTORY "${_tfd_work}/src")
-  configure_file("${CMAKE_SOURCE_DIR}/cmake/tinyfiledialogs-crate/Cargo.toml" "${_tfd_work}/Cargo.toml" COPYONLY)
-  configure_file("${CMAKE_SOURCE_DIR}/cmake/tinyfiledialogs-crate/src/lib.rs" "${_tfd_work}/src/lib.rs" COPYONLY)
-  if(DEFINED ENV{CARGO_HOME})
-    set(_cargo_home "$ENV{CARGO_HOME}")
-  else()
-    set(_cargo_home "$ENV{HOME}/.cargo")
-  endif()
-  message(STATUS "Fetching tinyfiledialogs ${TFD_VERSION} with cargo")
-  execute_process(COMMAND "${CARGO_EXECUTABLE}" fetch --manifest-path "${_tfd_work}/Cargo.toml"
-                  RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _out)
-  if(NOT _rc EQUAL 0)
-    message(FATAL_ERROR "cargo fetch of tinyfiledialogs ${TFD_VERSION} failed:\n${_out}")
-  endif()
-  file(GLOB _crates "${_cargo_home}/registry/cache/*/tinyfiledialogs-${TFD_VERSION}.crate")
-  list(LENGTH _crates _n)
-  if(_n EQUAL 0)
-    message(FATAL_ERROR "tinyfiledialogs-${TFD_VERSION}.crate not found under ${_cargo_home}/registry/cache")
-  endif()
-  list(GET _crates 0 _crate)
-  file(SHA256 "${_crate}" _sha)
-  if(NOT _sha STREQUAL TFD_SHA256)
-    message(FATAL_ERROR "${_crate}: SHA-256 ${_sha} does not match the pinned ${TFD_SHA256}")
-  endif()
-  file(ARCHIVE_EXTRACT INPUT "${_crate}" DESTINATION "${CMAKE_BINARY_DIR}/_deps")
+  glint_cargo_fetch("tinyfiledialogs ${TFD_VERSION}" "${CMAKE_SOURCE_DIR}/cmake/tinyfiledialogs-crate"
+                    "${CMAKE_BINARY_DIR}/_deps/tinyfiledialogs-fetch")
+  glint_extract_crate(tinyfiledialogs ${TFD_VERSION} ${TFD_SHA256} "${CMAKE_BINARY_DIR}/_deps")
 endif()
 
 add_library(tinyfiledialogs STATIC "${_tfd_src}/libtinyfiledialogs/tinyfiledialogs.c")

@@ -267,11 +267,8 @@ void copy_block(Image& image, const RgbaChannels& rgba, unsigned char* const* ch
 
 // The decoded channels as RGBA (a channel that `rgba` leaves out is 1).
 Image copy_exr_pixels(const std::filesystem::path& path, const ExrFile& exr, const RgbaChannels& rgba) {
-  Image image;
-  image.width = exr.image.width;
-  image.height = exr.image.height;
-  check_image_dimensions(path, image.width, image.height);
-  image.pixels.assign(static_cast<size_t>(image.width) * image.height * 4, 1.0f);
+  check_image_dimensions(path, exr.image.width, exr.image.height);
+  Image image = Image::filled(exr.image.width, exr.image.height, 1.0f);
   const EXRHeader& header = exr.header;
   if (header.tiled) {
     if (!exr.image.tiles) image_fail(path, "OpenEXR file has no tiles");

@@ -10,10 +10,7 @@ namespace {
 
 // An RGBA image of width x height read from `texture` as floats.
 Image read_rgba(GLuint texture, int width, int height) {
-  Image image;
-  image.width = width;
-  image.height = height;
-  image.pixels.resize(static_cast<size_t>(width) * height * 4);
+  Image image = Image::filled(width, height, 0.0f);
   glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT,
                     static_cast<GLsizei>(image.pixels.size() * sizeof(float)), image.pixels.data());
   return image;

@@ -249,24 +249,12 @@ ErrorEstimate GpuRenderer::estimate_error() {
   return estimate_;
 }
 
-namespace {
-
-Image zero_image(int width, int height) {
-  Image image;
-  image.width = width;
-  image.height = height;
-  image.pixels.assign(static_cast<size_t>(width) * height * 4, 0.0f);
-  return image;
-}
-
-}  // namespace
-
 Image GpuRenderer::read_accumulation() const {
-  return samples_ > 0 ? film_.read_accumulation() : zero_image(film_.width(), film_.height());
+  return samples_ > 0 ? film_.read_accumulation() : Image::filled(film_.width(), film_.height(), 0.0f);
 }
 
 Image GpuRenderer::read_variance() const {
-  return samples_ > 0 ? film_.read_variance() : zero_image(film_.width(), film_.height());
+  return samples_ > 0 ? film_.read_variance() : Image::filled(film_.width(), film_.height(), 0.0f);
 }
 
 Image GpuRenderer::read_display() {

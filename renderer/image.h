@@ -20,6 +20,15 @@ struct Image {
 
   float* at(int x, int y) { return &pixels[(static_cast<size_t>(y) * width + x) * 4]; }
   const float* at(int x, int y) const { return &pixels[(static_cast<size_t>(y) * width + x) * 4]; }
+
+  // width x height pixels whose four channels all hold `value`.
+  static Image filled(int width, int height, float value) {
+    Image image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(static_cast<size_t>(width) * height * 4, value);
+    return image;
+  }
 };
 
 // Thrown by every reader and writer; what() names the file and the problem.

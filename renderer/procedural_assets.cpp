@@ -105,17 +105,9 @@ glm::vec3 srgb(float r, float g, float b) {  // a colour picked by eye, as linea
   return {srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b)};
 }
 
-Image blank(int width, int height) {
-  Image image;
-  image.width = width;
-  image.height = height;
-  image.pixels.assign(static_cast<size_t>(width) * height * 4, 1.0f);
-  return image;
-}
-
 // Fills an RGBA image from f(u, v) evaluated at pixel centres.
 Image generate(int size, const std::function<glm::vec4(float, float)>& f) {
-  Image image = blank(size, size);
+  Image image = Image::filled(size, size, 1.0f);
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const glm::vec4 c = f((x + 0.5f) / size, (y + 0.5f) / size);
@@ -261,7 +253,7 @@ Image checker_with_holes(int size) {
   const int cells = 8;
   const float cell = static_cast<float>(size) / cells;
   const float radius = 0.3f * cell;
-  Image image = blank(size, size);
+  Image image = Image::filled(size, size, 1.0f);
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const float px = x + 0.5f, py = y + 0.5f;
@@ -313,7 +305,7 @@ Image sky(const SkyOptions& o) {
   };
   // 4x4 samples per pixel: the sun is only a few pixels wide and must not alias.
   constexpr int kSub = 4;
-  Image image = blank(o.width, o.height);
+  Image image = Image::filled(o.width, o.height, 1.0f);
   for (int y = 0; y < o.height; ++y)
     for (int x = 0; x < o.width; ++x) {
       glm::vec3 sum(0);

@@ -50,14 +50,6 @@ std::string read_bytes(const fs::path& file) {
 
 using test::furnace_scene;
 
-Image constant_image(int w, int h) {
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.pixels.assign(static_cast<size_t>(w) * h * 4, 0.5f);
-  return img;
-}
-
 // The render fits nowhere: exit 1 naming the file and the reason; the old image is intact.
 TEST(RenderOutput, FullDiskFailsAndKeepsTheOldImage) {
   test::TempDir dir;
@@ -65,7 +57,7 @@ TEST(RenderOutput, FullDiskFailsAndKeepsTheOldImage) {
   test::SmallTmpfs tmpfs("64k");
   REQUIRE_TMPFS(tmpfs);
   const fs::path out = tmpfs / "out.exr";
-  save_image(out, constant_image(2, 2));
+  save_image(out, Image::filled(2, 2, 0.5f));
   const std::string old_bytes = read_bytes(out);
   ASSERT_GT(tmpfs.fill(), 0u);
   const Result run = render({(dir / "furnace.glint").string(), "-o", out.string(), "--spp", "1"});

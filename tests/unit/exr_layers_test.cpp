@@ -9,10 +9,7 @@ namespace glint {
 namespace {
 
 Image ramp(int w, int h, float offset) {
-  Image image;
-  image.width = w;
-  image.height = h;
-  image.pixels.resize(static_cast<size_t>(w) * h * 4);
+  Image image = Image::filled(w, h, 0.0f);
   for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = offset + 0.01f * static_cast<float>(i);
   return image;
 }
