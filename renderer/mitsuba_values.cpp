@@ -142,6 +142,7 @@ glm::vec3 Props::colour(const std::string& name, glm::vec3 fallback) {
   if (c->name != "rgb" && c->name != "float" && c->name != "spectrum")
     ctx_.fail(*c, "expected <rgb name=\"" + name + "\">");
   const std::vector<double> v = numbers(ctx_, *c, ctx_.required(*c, "value"), 1, c->name == "rgb" ? 3 : 1);
+  if (v.size() == 2) ctx_.fail(*c, "expected 1 or 3 numbers, got 2");
   if (c->name == "spectrum") ctx_.warn(*c, "read as a grey of its value (Glint's colours are RGB)");
   return v.size() == 3 ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(float(v[0]));
 }
