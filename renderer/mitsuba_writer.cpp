@@ -1,7 +1,8 @@
 // Glint scene -> Mitsuba 3 XML. The conventions (bench/tools/mitsuba_export.py, validated by the
 // accuracy bench, bench/reports/RESULTS.md):
-// - Glint shades both sides of a surface: opaque materials are wrapped in twosided; refractive
-//   ones are not (one interface, its inside opposite the quad's normal or inside the sphere).
+// - Glint shades both sides of a surface: opaque materials are wrapped in twosided; glass is not
+//   (Mitsuba refuses it: thindielectric is symmetric, and a dielectric is one interface with its
+//   inside opposite the quad's normal or inside the sphere).
 // - Emission leaves both sides in Glint, the front only in Mitsuba: an emissive quad gets a
 //   back copy facing the other way a hair behind it, and an emissive sphere with the camera or
 //   a shape inside gets an inward-facing inner copy (ids glint-back-of-quad-N,
@@ -223,7 +224,9 @@ class MitsubaWriter {
   }
 
   void material(const Material& m) {
-    const bool two_sided = m.type != MaterialType::refractive;
+    // Glass is not wrapped: Mitsuba's twosided refuses a BSDF that transmits (thindielectric is
+    // symmetric anyway, and a dielectric's inside is opposite its normal).
+    const bool two_sided = m.type != MaterialType::refractive && m.type != MaterialType::transparent;
     const bool masked = m.opacity < 1;
     int d = 1;
     if (masked) {

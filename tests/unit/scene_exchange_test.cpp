@@ -12,6 +12,7 @@
 #include "renderer/pbrt_scene.h"
 #include "renderer/project_file.h"
 #include "renderer/scene_exchange.h"
+#include "renderer/xml_reader.h"
 #include "tests/temp_dir.h"
 
 namespace glint {
@@ -223,6 +224,30 @@ TEST(SceneExchange, MitsubaWriterMakesEmissiveQuadsTwoSided) {
   EXPECT_NE(out.text.find("id=\"glint-back-of-quad-"), std::string::npos);
   ASSERT_EQ(out.side_files.size(), 1u);  // the light's back copy; the walls are rectangles
   EXPECT_EQ(out.side_files[0].relative_path.rfind("box-meshes/quad-", 0), 0u);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Mitsuba's twosided refuses a BSDF that transmits ("Only materials without a transmission
+// component can be nested"): glass must not be wrapped, or Mitsuba cannot load the file.
+bool twosided_wraps_glass(const XmlElement& e) {
+  if (e.name == "bsdf" && e.attribute("type") && *e.attribute("type") == "twosided")
+    for (const XmlElement& c : e.children)
+      if (c.name == "bsdf" && c.attribute("type") && c.attribute("type")->find("dielectric") != std::string::npos) return true;
+  for (const XmlElement& c : e.children)
+    if (twosided_wraps_glass(c)) return true;
+  return false;
+}
+
+TEST(SceneExchange, MitsubaWriterNeverWrapsGlassInTwosided) {
+  for (const fs::path& p : example_projects()) {
+    const ExportedScene out = write_mitsuba_scene(load_project(p), "x", {});
+    EXPECT_FALSE(twosided_wraps_glass(parse_xml(out.text, p.string()))) << p.filename();
+  }
 }
 
 }  // namespace
