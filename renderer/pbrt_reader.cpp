@@ -9,6 +9,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "renderer/json_fields.h"
+#include "renderer/pbrt_materials.h"
 #include "renderer/pbrt_scene.h"
 #include "renderer/pbrt_tokens.h"
 #include "renderer/quad_shape.h"
@@ -131,12 +132,8 @@ class PbrtReader {
   }
 
   // ---- Directives ----
-  void directive() {
-    const Token& t = next("a directive");
-    line_ = t.line;
-    directive_ = t.text;
-    if (t.quoted) fail("expected a directive, got a string");
-    const std::string& d = t.text;
+  // The current transformation's directives; false for any other.
+  bool transform_directive(const std::string& d) {
     GraphicsState& gs = state_.back();
     if (d == "LookAt") {
       const glm::dvec3 eye = vec_arg(), look = vec_arg(), up = vec_arg();
@@ -167,16 +164,15 @@ class PbrtReader {
       gs.ctm = found->second;
     } else if (d == "ReverseOrientation") {
       gs.reverse_orientation = !gs.reverse_orientation;
-    } else if (d == "AttributeBegin" || d == "TransformBegin") {
-      state_.push_back(gs);
-      pending_name_ = t.comment;
-    } else if (d == "AttributeEnd" || d == "TransformEnd") {
-      if (state_.size() == 1) fail("no AttributeBegin to end");
-      const GraphicsState top = state_.back();
-      state_.pop_back();
-      if (d == "TransformEnd") state_.back() = GraphicsState{top.ctm, state_.back().reverse_orientation, state_.back().material, state_.back().emission};
-      pending_name_.clear();
-    } else if (d == "Camera") {
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  // The rendering options before WorldBegin, and WorldBegin; false for any other directive.
+  bool option_directive(const std::string& d) {
+    if (d == "Camera") {
       const std::string type = string_arg();
       camera(type, params());
     } else if (d == "Film") {
@@ -201,6 +197,29 @@ class PbrtReader {
       finish(ps);
     } else if (d == "WorldBegin") {
       world_begin();
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  void directive() {
+    const Token& t = next("a directive");
+    line_ = t.line;
+    directive_ = t.text;
+    if (t.quoted) fail("expected a directive, got a string");
+    const std::string& d = t.text;
+    GraphicsState& gs = state_.back();
+    if (transform_directive(d) || option_directive(d)) return;
+    if (d == "AttributeBegin" || d == "TransformBegin") {
+      state_.push_back(gs);
+      pending_name_ = t.comment;
+    } else if (d == "AttributeEnd" || d == "TransformEnd") {
+      if (state_.size() == 1) fail("no AttributeBegin to end");
+      const GraphicsState top = state_.back();
+      state_.pop_back();
+      if (d == "TransformEnd") state_.back() = GraphicsState{top.ctm, state_.back().reverse_orientation, state_.back().material, state_.back().emission};
+      pending_name_.clear();
     } else if (d == "LightSource") {
       const std::string type = string_arg();
       light(type, params());
@@ -209,11 +228,14 @@ class PbrtReader {
       area_light(type, params());
     } else if (d == "Material") {
       const std::string type = string_arg();
-      gs.material = material("material", type, params());
+      const Params ps = params();
+      gs.material = materials_.read("material", type, ps);
+      finish(ps);
     } else if (d == "MakeNamedMaterial") {
       const std::string name = string_arg();
       const Params ps = params();
-      named_materials_[name] = material(name, ps.string("type", ""), ps);
+      named_materials_[name] = materials_.read(name, ps.string("type", ""), ps);
+      finish(ps);
     } else if (d == "NamedMaterial") {
       const std::string name = string_arg();
       const auto found = named_materials_.find(name);
@@ -361,74 +383,6 @@ class PbrtReader {
     textures_[name] = path;
   }
 
-  // A Glint texture for a pbrt texture's name ("" when the file declared no image texture of it).
-  std::string glint_texture(const std::string& name) {
-    const auto found = textures_.find(name);
-    if (found == textures_.end()) {
-      warn("texture \"" + json_fields::clip(name, 40) + "\" is not an image texture read so far: not imported");
-      return "";
-    }
-    if (find_texture(scene_, name) < 0) scene_.textures.push_back({name, found->second});
-    return name;
-  }
-
-  // Glint's roughness r (alpha = r^2) from pbrt's roughness parameters.
-  float roughness(const Params& ps) {
-    double value = ps.number("roughness", 0);
-    if (ps.find("uroughness") || ps.find("vroughness")) {
-      value = ps.number("uroughness", 0);
-      if (ps.number("vroughness", 0) != value) warn("anisotropic roughness is read as uroughness (Glint's is isotropic)");
-    }
-    const double alpha = ps.boolean("remaproughness", true) ? std::sqrt(std::max(0.0, value)) : value;
-    return float(std::sqrt(std::max(0.0, alpha)));
-  }
-
-  glm::vec3 colour(const Params& ps, const std::string& name, glm::vec3 fallback, Material& m) {
-    if (const std::string tex = ps.texture(name); !tex.empty()) {
-      m.color_texture = glint_texture(tex);
-      return glm::vec3(1);
-    }
-    return ps.rgb(name, fallback);
-  }
-
-  std::string material(const std::string& name, const std::string& type, const Params& ps) {
-    Material m;
-    if (type == "diffuse") {
-      m.color = colour(ps, "reflectance", glm::vec3(0.5f), m);
-    } else if (type == "conductor") {
-      m.type = MaterialType::reflective;
-      if (!ps.find("reflectance")) warn("its metal's complex index of refraction is read as a white mirror");
-      ps.find("eta"), ps.find("k");
-      m.color = colour(ps, "reflectance", glm::vec3(1), m);
-      m.roughness = roughness(ps);
-    } else if (type == "coateddiffuse") {
-      m.type = MaterialType::glossy;
-      m.color = colour(ps, "reflectance", glm::vec3(0.5f), m);
-      m.roughness = roughness(ps);
-      m.ior = float(ps.number("eta", 1.5));
-      ps.find("thickness");
-      warn("read as Glint's glossy (a clear coat over a diffuse base, which layers them differently)");
-    } else if (type == "dielectric" || type == "thindielectric") {
-      m.type = type == "dielectric" ? MaterialType::refractive : MaterialType::transparent;
-      m.ior = float(ps.number("eta", 1.5));
-      m.color = glm::vec3(1);  // pbrt's glass has no tint
-      m.roughness = type == "dielectric" ? roughness(ps) : 0.0f;
-      if (type == "thindielectric") warn("read as Glint's transparent (thin glass with Schlick's Fresnel, no inter-reflections)");
-    } else {
-      warn("material type \"" + json_fields::clip(type, 40) + "\" is read as a grey matte");
-      m.color = glm::vec3(0.5f);
-      for (const auto& p : ps.list) p.used = true;
-    }
-    ps.find("type");
-    ps.find("displacement") ? warn("its displacement is not imported") : void();
-    finish(ps);
-    std::string unique = name;
-    for (int n = 2; find_material(scene_, unique) >= 0; ++n) unique = name + "-" + std::to_string(n);
-    m.name = unique;
-    scene_.materials.push_back(m);
-    return unique;
-  }
-
   // The Glint material of a shape: the current one with the current area light's emission and
   // the shape's alpha (Glint keeps both in the material). The first shape to use a material
   // gives it its emission and coverage; a shape that differs gets a copy ("NAME-2").
@@ -553,6 +507,7 @@ class PbrtReader {
   std::vector<GraphicsState> state_{GraphicsState{}};
   std::map<std::string, glm::dmat4> coordinate_systems_;
   std::map<std::string, std::string> named_materials_, textures_, variants_;
+  pbrt::MaterialReader materials_{scene_, textures_, [this](const std::string& w) { warn(w); }};
   std::map<std::string, bool> claimed_;
   std::map<std::string, size_t> skipped_shapes_, skipped_lights_;
   std::optional<std::array<glm::dvec3, 3>> look_at_;
