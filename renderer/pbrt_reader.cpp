@@ -108,8 +108,11 @@ class PbrtReader {
       pbrt::Param p;
       p.line = decl.line;
       const size_t space = decl.text.find(' ');
+      const size_t name = decl.text.find_first_not_of(' ', space);
       p.type = decl.text.substr(0, space);
-      p.name = decl.text.substr(decl.text.find_first_not_of(' ', space));
+      if (name == std::string::npos || p.type.empty() || decl.text.find(' ', name) != std::string::npos)
+        fail("a parameter is \"TYPE NAME\", got \"" + json_fields::clip(decl.text, 40) + "\"");
+      p.name = decl.text.substr(name);
       if (pos_ < tokens_.size() && tokens_[pos_].text == "[" && !tokens_[pos_].quoted) {
         for (++pos_;;) {
           const Token& v = next("']'");

@@ -1,5 +1,6 @@
 #include "renderer/pbrt_tokens.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -18,7 +19,7 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file) {
     const char c = text[i];
     if (c == '\n') {
       ++line, ++i;
-    } else if (c == ' ' || c == '\t' || c == '\r') {
+    } else if (std::isspace(static_cast<unsigned char>(c))) {  // also \v and \f, which end a word
       ++i;
     } else if (c == '\0') {
       fail("the file holds a NUL byte");

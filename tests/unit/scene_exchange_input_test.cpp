@@ -128,6 +128,17 @@ TEST(PbrtReader, ErrorsNameTheFileLineAndDirective) {
   EXPECT_EQ(error_of([] { pbrt("WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n"); }),
             "s.pbrt: line 2: the file ends where ']' was expected");
   EXPECT_EQ(error_of([] { pbrt("WorldBegin\nTexture \"a\n"); }), "s.pbrt: line 2: a string is not closed by '\"'");
+  // Found by fuzz_scene_exchange: a declaration without a name threw std::out_of_range.
+  EXPECT_EQ(error_of([] { pbrt("Film \"rgb\" \"float \" [ 1 ]\n"); }),
+            "s.pbrt: line 1: Film: a parameter is \"TYPE NAME\", got \"float \"");
+}
+
+// Found by fuzz_scene_exchange: a vertical tab or form feed between tokens is white space (it
+// ended a word before any character was taken, and the tokenizer never moved on).
+TEST(PbrtReader, EveryWhiteSpaceSeparatesTokens) {
+  const ImportedScene s = pbrt("WorldBegin\v\fShape\v\"sphere\"\f\"float radius\" [\v2 ]\n");
+  ASSERT_EQ(s.scene.spheres.size(), 1u);
+  EXPECT_EQ(s.scene.spheres[0].radius, 2.0f);
 }
 
 TEST(PbrtReader, CountsShapesAndLightsGlintDoesNotModel) {
