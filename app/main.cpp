@@ -4,6 +4,7 @@
 #include <string>
 
 #include "editor/editor_app.h"
+#include "app/convert_command.h"
 #include "app/farm_command.h"
 #include "app/merge_command.h"
 #include "app/render_command.h"
@@ -20,6 +21,8 @@ const char* const kHelp =
     "  glint merge PART.exr... -o OUT.{exr,png,hdr}                join render parts\n"
     "  glint farm slurm PROJECT.glint --spp N --parts K -o OUT     render on a Slurm cluster\n"
     "  glint farm status -o OUT                                   the parts of a farm render\n"
+    "  glint convert IN OUT                                       a scene between .glint, Mitsuba\n"
+    "                                                             3 (.xml) and pbrt-v4 (.pbrt)\n"
     "  glint --version                                            the version\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
@@ -64,6 +67,7 @@ int main(int argc, char** argv) {
   if (command == "render") return glint::run_render_command(argc - 2, argv + 2);
   if (command == "merge") return glint::run_merge_command(argc - 2, argv + 2);
   if (command == "farm") return glint::run_farm_command(argc - 2, argv + 2);
+  if (command == "convert") return glint::run_convert_command(argc - 2, argv + 2);
   if (command == "-h" || command == "--help" || command == "help") {
     std::fputs(kHelp, stdout);
     return 0;
@@ -81,7 +85,7 @@ int main(int argc, char** argv) {
   }
   return glint::run_editor(*options);
 #else
-  std::fprintf(stderr, "glint: built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`, `glint merge` and `glint farm` are available\n");
+  std::fprintf(stderr, "glint: built without the editor (GLINT_BUILD_EDITOR=OFF): only `glint render`, `glint merge`, `glint farm` and `glint convert` are available\n");
   return 2;
 #endif
 }

@@ -35,10 +35,10 @@ namespace glint {
 class ProgramWorker;
 
 // What a chosen file is for (native dialog or the typed-path prompt).
-enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output };
+enum class FilePurpose { open_project, save_project_as, texture_slot, add_texture, environment, export_output, import_scene, export_scene };
 // Actions behind the unsaved-changes guard.
 // open_example: an example project as an untitled copy (open_example_copy).
-enum class DocAction { none, new_document, open_dialog, open_path, open_example, quit };
+enum class DocAction { none, new_document, open_dialog, open_path, open_example, import_dialog, quit };
 
 // The viewport panel: where it is this frame, how it previews, and what it shows.
 struct ViewportView {
@@ -245,6 +245,12 @@ std::string drop_file(Document& doc, EditorState& state, const std::filesystem::
 // Document actions (menus, keys and tests). request_action asks about unsaved changes first.
 void request_action(Document& doc, EditorState& state, DocAction action, std::filesystem::path path = {});
 bool open_document(Document& doc, EditorState& state, const std::filesystem::path& file);
+// File > Import scene... / Export scene... (editor/ui_scene_exchange.cpp, renderer/scene_exchange.h):
+// a Mitsuba 3 or pbrt-v4 scene as a new untitled document, or the document written as one. The
+// warnings go to stderr, their count and the first to the status bar. False (with the error
+// shown, the document untouched) on failure.
+bool import_document(Document& doc, EditorState& state, const std::filesystem::path& file);
+bool export_document(const Document& doc, EditorState& state, const std::filesystem::path& file);
 bool save_document(Document& doc, EditorState& state, bool save_as);
 void new_document(Document& doc, EditorState& state);
 // Asks for a file (native dialog, else the typed-path prompt) and applies it.

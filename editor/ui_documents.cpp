@@ -57,6 +57,7 @@ void perform(Document& doc, EditorState& state, DocAction action, const fs::path
     case DocAction::open_dialog: choose_file(doc, state, FilePurpose::open_project); break;
     case DocAction::open_path: open_document(doc, state, path); break;
     case DocAction::open_example: open_example_copy(doc, state, path); break;
+    case DocAction::import_dialog: choose_file(doc, state, FilePurpose::import_scene); break;
     case DocAction::quit: state.flow.quit_approved = true; break;
     case DocAction::none: break;
   }
@@ -78,6 +79,8 @@ DialogSpec dialog_spec(FilePurpose purpose) {
       return {"Choose a texture image", false, {"*.png", "*.jpg", "*.jpeg", "*.hdr", "*.exr"}, "Images"};
     case FilePurpose::environment: return {"Choose an environment map", false, {"*.hdr", "*.exr"}, "HDR images"};
     case FilePurpose::export_output: return {"Export render to", true, {"*.png", "*.hdr", "*.exr"}, "Images"};
+    case FilePurpose::import_scene: return {"Import a Mitsuba 3 or pbrt-v4 scene", false, {"*.xml", "*.pbrt"}, "Mitsuba 3 and pbrt-v4 scenes"};
+    case FilePurpose::export_scene: return {"Export scene to", true, {"*.xml", "*.pbrt"}, "Mitsuba 3 (.xml) and pbrt-v4 (.pbrt) scenes"};
   }
   return {"Choose a file", false, {}, ""};
 }
@@ -160,7 +163,10 @@ std::string file_dialog_start(const Document& doc, const EditorState& state, Fil
       // A folder, never the project file: images usually sit in its assets folder.
       if (fs::is_directory(folder / "assets", ec)) return (folder / "assets").string() + "/";
       return folder.string() + "/";
-    case FilePurpose::open_project: return folder.string() + "/";
+    case FilePurpose::open_project:
+    case FilePurpose::import_scene: return folder.string() + "/";
+    case FilePurpose::export_scene:
+      return (folder / ((doc.path().empty() ? std::string("untitled") : doc.path().stem().string()) + ".xml")).string();
   }
   return folder.string() + "/";
 }
@@ -224,6 +230,8 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
         break;
       }
       case FilePurpose::export_output: state.export_ui.settings.output = path; break;
+      case FilePurpose::import_scene: import_document(doc, state, path); break;
+      case FilePurpose::export_scene: export_document(doc, state, path); break;
     }
   } catch (const std::exception& e) {
     if (purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;

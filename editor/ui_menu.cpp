@@ -167,6 +167,8 @@ void draw_main_menu(Document& doc, EditorState& state) {
     if (ImGui::MenuItem("Save", "Ctrl+S")) save_document(doc, state, false);
     if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S")) save_document(doc, state, true);
     ImGui::Separator();
+    if (ImGui::MenuItem("Import scene...")) request_action(doc, state, DocAction::import_dialog);
+    if (ImGui::MenuItem("Export scene...")) choose_file(doc, state, FilePurpose::export_scene);
     if (ImGui::MenuItem("Export Render...")) state.export_ui.show = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) request_action(doc, state, DocAction::quit);

@@ -60,5 +60,7 @@ run() {
 # the image readers by time.
 run fuzz_project 8192 "$project_runs" -runs=$(((project_runs + workers - 1) / workers)) -max_total_time=900
 run fuzz_image 4096 0 -max_total_time="$image_seconds"
+# The Mitsuba and pbrt scene readers (glint convert), by time like the image readers.
+run fuzz_scene_exchange 8192 0 -max_total_time="${GLINT_FUZZ_EXCHANGE_SECONDS:-60}"
 [ $status -eq 0 ] && echo "fuzz: no crashes" >&2
 exit $status

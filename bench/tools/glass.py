@@ -43,6 +43,7 @@ def main():
     mi.set_log_level(mi.LogLevel.Error)
     run.log(f"glass: {a.width} px wide, references {a.ref_spp} spp, ladders 1..{a.max_spp} spp x "
             f"{a.seeds} seeds; mitsuba {mi.__version__} {variant}")
+    os.environ["GLINT"] = os.path.abspath(a.glint)  # mitsuba_export.py converts with this glint
     g = run.bench_glint("glass", project, os.path.abspath(a.glint), a.work, cfg, False)
     gs = run.summarize(g["rows"])
     m = run.bench_mitsuba("glass", project, os.path.join(a.work, "mitsuba"), cfg, g, gs)

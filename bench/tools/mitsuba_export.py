@@ -1,6 +1,10 @@
 #!/usr/bin/env python3
 """Glint project (.glint, format version 1) -> Mitsuba 3 scene dictionary (mi.load_dict).
 
+The scene is what `glint convert PROJECT.glint SCENE.xml` writes (renderer/mitsuba_writer.cpp,
+docs/DESIGN.md section 13), read into a dictionary; this script adds the bench's policy (which
+scenes are compared at all), its sampler choice and the resampled environment image.
+
 Only scenes whose parts Mitsuba models the same way are exported; anything else raises
 Unsupported with the reasons. What maps, and how (each checked by bench/tools/run.py's convention
 test or by the Cornell/furnace comparisons in RESULTS.md):
@@ -24,8 +28,9 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
                       both sides emit (and reflect) as in Glint. Emissive spheres emit outwards;
                       an inward-facing inner sphere is added only when the camera or another
                       shape is inside (otherwise the inside is never seen).
-- quads            -> a two-triangle PLY mesh (p0, p1, p2), (p1, p3, p2) with face normals,
-                      exactly Glint's triangles (also for non-planar corners)
+- quads            -> a rectangle (a parallelogram with default uvs: the same two triangles'
+                      plane) or a two-triangle OBJ mesh (p0, p1, p2), (p1, p3, p2) with face
+                      normals, exactly Glint's triangles (also for non-planar corners)
 - spheres          -> sphere
 - environment      -> constant (colour * intensity) or envmap (texture, scale = intensity).
                       Mitsuba looks up u = atan2(v.x, -v.z) / 2pi, v = acos(v.y) / pi with
@@ -53,7 +58,6 @@ import argparse
 import json
 import math
 import os
-import struct
 import sys
 import time
 
@@ -189,19 +193,6 @@ def _is_emissive(m):
     return any(float(c) > 0 for c in m["emission"])
 
 
-def _write_ply(path, verts, faces):
-    with open(path, "wb") as f:
-        f.write(b"ply\nformat binary_little_endian 1.0\n")
-        f.write(f"element vertex {len(verts)}\n".encode())
-        f.write(b"property float x\nproperty float y\nproperty float z\n")
-        f.write(f"element face {len(faces)}\n".encode())
-        f.write(b"property list uchar int vertex_indices\nend_header\n")
-        for v in verts:
-            f.write(struct.pack("<3f", *[float(c) for c in v]))
-        for fc in faces:
-            f.write(struct.pack("<B3i", 3, *fc))
-
-
 def glint_env_to_mitsuba_rows(img):
     """(H, W, 3) lat-long image -> (2H + 1, W, 3): Mitsuba's row-on-pole bilinear lookup of the
     result equals Glint's (i + 0.5) / H, clamp-to-edge bilinear lookup of the input."""
@@ -232,123 +223,127 @@ def scene_size(doc):
 SAMPLERS = ("independent", "ldsampler", "multijitter", "orthogonal")
 
 
+def glint_executable():
+    """The `glint` that converts scenes: $GLINT, else the build folder's (run.py passes --glint
+    on as $GLINT)."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    return os.environ.get("GLINT") or os.path.join(here, "..", "..", "build", "glint")
+
+
+def _absolute_assets(doc):
+    """The project document with its asset paths absolute, to be written anywhere."""
+    base = doc["_base_dir"]
+    out = {k: v for k, v in doc.items() if not k.startswith("_")}
+    absolute = lambda p: p if os.path.isabs(p) else os.path.normpath(os.path.join(base, p))
+    out["textures"] = [{**t, "path": absolute(t["path"])} for t in doc.get("textures", [])]
+    env = dict(doc.get("environment", {}))
+    if env.get("texture"):
+        env["texture"] = absolute(env["texture"])
+    out["environment"] = env
+    return out
+
+
+def _numbers(text):
+    return [float(x) for x in text.replace(",", " ").split()]
+
+
+def _xml_to_dict(element, folder, params, mi):
+    """One object of the XML that `glint convert` writes as mi.load_dict's dictionary. `params`
+    replace the $name values of its <default>s; filenames become absolute (load_dict resolves
+    them against the current folder)."""
+    T = mi.ScalarTransform4f
+    value = lambda e, key="value": params.get(e.get(key)[1:], e.get(key)) if e.get(key, "").startswith("$") else e.get(key)
+    out = {"type": element.get("type")} if element.get("type") else {}
+    for i, c in enumerate(element):
+        key = c.get("name") or c.get("id") or (c.tag if c.tag not in out else f"{c.tag}_{i}")
+        if c.tag == "float":
+            out[key] = float(value(c))
+        elif c.tag == "integer":
+            out[key] = int(value(c))
+        elif c.tag == "boolean":
+            out[key] = value(c) == "true"
+        elif c.tag == "string":
+            v = value(c)
+            out[key] = v if key != "filename" or os.path.isabs(v) else os.path.join(folder, v)
+        elif c.tag == "rgb":
+            out[key] = {"type": "rgb", "value": _numbers(value(c))}
+        elif c.tag == "point":
+            out[key] = _numbers(value(c))
+        elif c.tag == "ref":
+            out[key] = {"type": "ref", "id": c.get("id")}
+        elif c.tag == "transform":
+            if len(c) != 1:
+                raise ValueError("glint convert writes one step per <transform>")
+            t = c[0]
+            if t.tag == "lookat":
+                out[key] = T().look_at(origin=_numbers(t.get("origin")), target=_numbers(t.get("target")),
+                                       up=_numbers(t.get("up")))
+            elif t.tag == "matrix":
+                out[key] = T(np.array(_numbers(t.get("value"))).reshape(4, 4))
+            elif t.tag == "rotate":
+                out[key] = T().rotate([float(t.get(a, 0)) for a in "xyz"], float(t.get("angle")))
+            else:
+                raise ValueError(f"glint convert wrote an unexpected <{t.tag}>")
+        elif c.tag == "default":
+            continue
+        else:
+            out[key] = _xml_to_dict(c, folder, params, mi)
+    return out
+
+
 def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation_offset_deg=-90.0,
            resample_env_rows=True, sampler="independent"):
     """Returns (scene dict, notes). Raises Unsupported. `sampler` is one of SAMPLERS.
-    `rotation_offset_deg` and `resample_env_rows` exist for the convention test only (to show
-    that the wrong ones fail)."""
+    The scene is `glint convert`'s Mitsuba XML (renderer/mitsuba_writer.cpp, whose conventions
+    are the ones listed above), read into a dictionary; the environment image is handed over
+    resampled (its `envmap` parameter). `rotation_offset_deg` and `resample_env_rows` exist for
+    the convention test only (to show that the wrong ones fail)."""
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown Mitsuba sampler {sampler!r} (one of {', '.join(SAMPLERS)})")
     reasons = unsupported_reasons(doc)
     if reasons:
         raise Unsupported("; ".join(reasons))
     mi = _mitsuba()
-    T = mi.ScalarTransform4f
+    import subprocess
+    import xml.etree.ElementTree as ET
     notes = []
-    base = doc["_base_dir"]
     if mesh_dir is None:
         import tempfile
         mesh_dir = tempfile.mkdtemp(prefix="glint_mitsuba_")
     os.makedirs(mesh_dir, exist_ok=True)
+    project = os.path.join(mesh_dir, "scene.glint")
+    with open(project, "w") as f:
+        json.dump(_absolute_assets(doc), f)
+    xml_path = os.path.join(mesh_dir, "scene.xml")
+    r = subprocess.run([glint_executable(), "convert", project, xml_path, "--spp", str(int(spp))],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"glint convert failed ({r.returncode}): {r.stderr.strip()}")
     film = doc.get("film", {})
-    width = int(width or film.get("width", 960))
-    height = int(height or film.get("height", 540))
-    cam = {**CAMERA_DEFAULTS, **doc.get("camera", {})}
-    size = scene_size(doc)
-    eye = _v(cam["position"])
-
-    sensor = {
-        "type": "thinlens" if float(cam["aperture_radius"]) > 0 else "perspective",
-        "fov": float(cam["vfov_deg"]), "fov_axis": "y",
-        "near_clip": 1e-6 * size, "far_clip": 1e3 * size + 1e6,
-        "to_world": T().look_at(origin=[float(c) for c in cam["position"]],
-                                target=[float(c) for c in cam["target"]],
-                                up=[float(c) for c in cam["up"]]),
-        "film": {"type": "hdrfilm", "width": width, "height": height, "pixel_format": "rgb",
-                 "component_format": "float32", "rfilter": {"type": "box"}},
-        "sampler": {"type": sampler, "sample_count": int(spp), "seed": int(seed)},
-    }
-    if sensor["type"] == "thinlens":
-        sensor["aperture_radius"] = float(cam["aperture_radius"])
-        sensor["focus_distance"] = float(cam["focus_distance"])
-
-    max_bounces = int(doc.get("render", {}).get("max_bounces", 8))
-    d = {"type": "scene",
-         "integrator": {"type": "path", "max_depth": max_bounces + 1, "hide_emitters": False},
-         "sensor": sensor}
-
-    mats = {m["name"]: {**MATERIAL_DEFAULTS, **m} for m in doc.get("materials", [])}
-
-    def bsdf(m):
-        rgb = {"type": "rgb", "value": [float(c) for c in m["color"]]}
-        if m["type"] == "refractive":
-            out = {"type": "dielectric", "int_ior": float(m["ior"]), "ext_ior": 1.0,
-                   "specular_transmittance": rgb}
-            if float(m["roughness"]) >= 0.03:
-                out.update(type="roughdielectric", distribution="ggx",
-                           alpha=float(m["roughness"]) ** 2, sample_visible=True)
-            return out
-        if m["type"] == "matte":
-            inner = {"type": "diffuse", "reflectance": rgb}
-        else:  # white perfect mirror (checked above)
-            inner = {"type": "conductor", "material": "none"}
-        return {"type": "twosided", "material": inner}
-
-    def emitter(m):
-        return {"type": "area", "radiance": {"type": "rgb", "value": [float(c) for c in m["emission"]]}}
-
-    inside_points = [eye] + [_v(q["corners"][k]) for q in doc.get("quads", []) for k in range(4)]
-    for i, s in enumerate(doc.get("spheres", [])):
-        m = mats[s["material"]]
-        c, r = [float(x) for x in s.get("center", [0, 0, 0])], float(s.get("radius", 1))
-        shape = {"type": "sphere", "center": c, "radius": r, "bsdf": bsdf(m)}
-        if _is_emissive(m):
-            shape["emitter"] = emitter(m)
-            others = inside_points + [_v(o.get("center", [0, 0, 0])) for j, o in
-                                      enumerate(doc.get("spheres", [])) if j != i]
-            if any(np.linalg.norm(p - _v(c)) < r for p in others):
-                d[f"sphere_{i}_inner"] = {"type": "sphere", "center": c, "radius": r * (1 - 1e-5),
-                                          "flip_normals": True, "bsdf": bsdf(m), "emitter": emitter(m)}
-                notes.append(f"spheres[{i}]: something is inside an emissive sphere; added an "
-                             "inward-emitting inner sphere")
-        d[f"sphere_{i}"] = shape
-        if r > 1e3 * max(1e-30, np.linalg.norm(eye - _v(c)) - r) and mi.variant().startswith("llvm"):
-            notes.append(f"spheres[{i}] (radius {r:g}) is huge next to its distance from the "
-                         "camera: Mitsuba's float32 sphere intersection (llvm variants) loses "
-                         "light on it; use scalar_rgb for this scene")
-
-    for i, q in enumerate(doc.get("quads", [])):
-        m = mats[q["material"]]
-        p = [_v(c) for c in q["corners"]]
-        path = os.path.join(mesh_dir, f"quad_{i}.ply")
-        _write_ply(path, p, [(0, 1, 2), (1, 3, 2)])
-        shape = {"type": "ply", "filename": path, "face_normals": True, "bsdf": bsdf(m)}
-        if _is_emissive(m):
-            shape["emitter"] = emitter(m)
-            n = np.cross(p[1] - p[0], p[2] - p[0])
-            n /= np.linalg.norm(n)
-            eps = 1e-5 * (1.0 + max(float(np.abs(x).max()) for x in p))
-            back = [x - eps * n for x in p]
-            bpath = os.path.join(mesh_dir, f"quad_{i}_back.ply")
-            _write_ply(bpath, back, [(0, 2, 1), (1, 2, 3)])
-            d[f"quad_{i}_back"] = {"type": "ply", "filename": bpath, "face_normals": True,
-                                   "bsdf": bsdf(m), "emitter": emitter(m)}
-        d[f"quad_{i}"] = shape
-
+    params = {"spp": str(int(spp)), "seed": str(int(seed)),
+              "resx": str(int(width or film.get("width", 960))),
+              "resy": str(int(height or film.get("height", 540)))}
+    d = _xml_to_dict(ET.parse(xml_path).getroot(), mesh_dir, params, mi)
+    d["integrator"]["hide_emitters"] = False
+    d["sensor"]["sampler"] = {"type": sampler, "sample_count": int(spp), "seed": int(seed)}
     env = {**ENV_DEFAULTS, **doc.get("environment", {})}
-    if env["texture"]:
-        path = env["texture"] if os.path.isabs(env["texture"]) else os.path.join(base, env["texture"])
+    for key in [k for k, v in d.items() if isinstance(v, dict) and v.get("type") == "envmap"]:
+        path = env["texture"] if os.path.isabs(env["texture"]) else os.path.join(doc["_base_dir"], env["texture"])
         img = np.array(mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32,
                                                srgb_gamma=False), copy=True)
         if resample_env_rows:
             img = glint_env_to_mitsuba_rows(img)
-        d["environment"] = {"type": "envmap", "bitmap": mi.Bitmap(img.astype(np.float32)),
-                            "scale": float(env["intensity"]),
-                            "to_world": T().rotate([0, 1, 0], float(env["rotation_deg"]) + rotation_offset_deg)}
-    else:
-        rgb = [float(c) * float(env["intensity"]) for c in env["color"]]
-        if any(c > 0 for c in rgb):
-            d["environment"] = {"type": "constant", "radiance": {"type": "rgb", "value": rgb}}
+        d[key] = {"type": "envmap", "bitmap": mi.Bitmap(img.astype(np.float32)), "scale": d[key]["scale"],
+                  "to_world": mi.ScalarTransform4f().rotate([0, 1, 0], float(env["rotation_deg"]) + rotation_offset_deg)}
+    eye = _v({**CAMERA_DEFAULTS, **doc.get("camera", {})}["position"])
+    for i, s in enumerate(doc.get("spheres", [])):
+        c, r_ = _v(s.get("center", [0, 0, 0])), float(s.get("radius", 1))
+        if r_ > 1e3 * max(1e-30, np.linalg.norm(eye - c) - r_) and mi.variant().startswith("llvm"):
+            notes.append(f"spheres[{i}] (radius {r_:g}) is huge next to its distance from the "
+                         "camera: Mitsuba's float32 sphere intersection (llvm variants) loses "
+                         "light on it; use scalar_rgb for this scene")
+    if any(k.startswith("glint-inside-of-sphere-") for k in d):
+        notes.append("something is inside an emissive sphere; added an inward-emitting inner sphere")
     return d, notes
 
 

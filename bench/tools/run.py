@@ -645,6 +645,7 @@ def main():
     glint = os.path.abspath(a.glint)
     if not os.path.exists(glint):
         sys.exit(f"bench: {glint} not found (bash scripts/build.sh)")
+    os.environ["GLINT"] = glint  # mitsuba_export.py converts the scenes with this glint
     # The committed scenes use the generated sky; with --assets the scenes are written beside the
     # renders (their environments point into DIR) and bench/scenes is left as committed.
     scenes_dir = os.path.join(BENCH, "scenes")
