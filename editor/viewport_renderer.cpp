@@ -103,7 +103,8 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
     k = static_cast<int>(std::min<int64_t>(k, kViewportMaxSamples - renderer_.sample_count()));
     // Busy: no longer than a fluid frame; idle: up to the idle slice (the UI answers in between).
     // A drag restarts every frame, so its pass is traced whole: bands would never finish.
-    const double slice = request.user_active && stats.restarted ? 1e30
+    // An explicit count per frame (tests, the soak) is traced as asked.
+    const double slice = request.samples_per_frame > 0 || (request.user_active && stats.restarted) ? 1e30
                          : request.user_active ? budget_.frame_trace_seconds()
                                                : std::max(budget_.frame_trace_seconds(), budget_.config().idle_trace_seconds);
     if (k > 0) trace_slice(k, slice, int64_t(full_w) * full_h);
@@ -158,7 +159,8 @@ void ViewportRenderer::trace_slice(int samples, double slice_seconds, int64_t fu
   if (!renderer_.pass_under_way()) {
     // A pass that fits the slice goes in one call; a longer one (a fine level, a heavy scene,
     // Preview > full on a slow device) in bands of rows over the next frames.
-    if (!(budget_.cost() > 0) || budget_.pass_seconds(pixels) * samples <= slice_seconds) {
+    if (!(budget_.cost() > 0) || budget_.pass_seconds(pixels) * samples <= slice_seconds ||
+        pixels < kMinBandedPixels) {
       renderer_.trace(samples);
       glFinish();  // the budget needs the pass's real time
       const double seconds = seconds_since(t0);

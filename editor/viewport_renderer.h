@@ -24,6 +24,10 @@ constexpr double kViewportEstimateSeconds = 0.25;
 // The viewport stops tracing here (about a million samples per pixel: converged long before).
 constexpr int64_t kViewportMaxSamples = int64_t(1) << 20;
 
+// A pass over fewer pixels is traced whole even where it takes longer than a frame's slice:
+// its time is then mostly each call's fixed cost (set-up, the wait), which bands would repeat.
+constexpr int64_t kMinBandedPixels = int64_t(1) << 16;
+
 class ViewportRenderer {
  public:
   // Needs a current OpenGL 4.5 context.
