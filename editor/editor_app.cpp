@@ -306,6 +306,21 @@ int save_screenshot(const EditorOptions& options, int fb_w, int fb_h, int frame,
   }
 }
 
+// Two frames (the dock layout is in place from the second) drawn before the viewport renderer
+// compiles its programs: the window shows the panels and "Compiling shaders..." meanwhile.
+void show_startup_frames(GLFWwindow* window, Document& doc, EditorState& state) {
+  for (int i = 0; i < 2; ++i) {
+    glfwPollEvents();
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(window, &fb_w, &fb_h);
+    if (fb_w <= 0 || fb_h <= 0) return;
+    begin_imgui_frame();
+    editor_frame_before_viewport(doc, state);
+    draw_imgui(fb_w, fb_h);
+    glfwSwapBuffers(window);
+  }
+}
+
 void update_title(GLFWwindow* window, const Document& doc, std::string& title) {
   if (std::string t = doc.window_title(); t != title) {
     title = t;
@@ -404,6 +419,7 @@ int run_editor(const EditorOptions& options) {
     EditorState state;
     start_imgui(windows->main, state, layout_file);
     if (!start_session(doc, state, options, windows->worker)) exit_code = 1;
+    show_startup_frames(windows->main, doc, state);
     std::unique_ptr<ViewportRenderer> viewport = make_viewport(state, options);
     if (!viewport) exit_code = 1;
 

@@ -21,4 +21,11 @@ void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport)
   ImGui::Render();
 }
 
+void editor_frame_before_viewport(Document& doc, EditorState& state) {
+  draw_editor_ui(doc, state);
+  doc.end_frame(ImGui::IsAnyItemActive() || state.tools.interacting);
+  show_viewport_image(state.viewport);
+  ImGui::Render();
+}
+
 }  // namespace glint

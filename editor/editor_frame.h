@@ -16,4 +16,8 @@ class ViewportRenderer;
 // 5. the viewport image goes under the panels and ImGui::Render() builds the draw data.
 void editor_frame(Document& doc, EditorState& state, ViewportRenderer& viewport);
 
+// A frame before the viewport renderer exists (its trace programs compile for seconds on a slow
+// device): the panels, and the viewport saying kCompilingShaders (ui.h) instead of an image.
+void editor_frame_before_viewport(Document& doc, EditorState& state);
+
 }  // namespace glint

@@ -34,6 +34,10 @@ struct ExportSettings {
   // Denoise the output (renderer/render_output.h; biased): on a worker thread once the target
   // is reached, so the UI keeps running; an EXR keeps the noisy colour as a layer.
   bool denoise = false;
+  // Set by the dialog's "Viewport aspect": the viewport's size (any unit) whose whole view the
+  // export frames, margins around the film included (editor/film_frame.h). Applies while the
+  // export's size has that aspect; {0, 0}: the film's framing.
+  float viewport_w = 0, viewport_h = 0;
 };
 
 // "" when valid, else the problem (shown in the dialog before starting). The size has the

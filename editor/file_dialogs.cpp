@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <mutex>
+#include <thread>
 
 #include <tinyfiledialogs.h>
 
@@ -52,6 +54,43 @@ std::optional<std::string> native_save_dialog(const std::string& title, const st
                                         f.empty() ? nullptr : f.data(), description.c_str());
   if (!r || !*r) return std::nullopt;
   return std::string(r);
+}
+
+std::optional<std::string> run_native_dialog(const FileDialogRequest& r) {
+  return r.save ? native_save_dialog(r.title, r.start, r.filters, r.description)
+                : native_open_dialog(r.title, r.start, r.filters, r.description);
+}
+
+struct AsyncFileDialog::Shared {
+  std::mutex mutex;
+  bool done = false;
+  std::optional<std::string> answer;
+};
+
+void AsyncFileDialog::start(FileDialogRequest request, Runner runner) {
+  if (shared_) return;
+  shared_ = std::make_shared<Shared>();
+  if (!runner) runner = run_native_dialog;
+  std::thread([shared = shared_, request = std::move(request), runner = std::move(runner)] {
+    std::optional<std::string> answer;
+    try {
+      answer = runner(request);
+    } catch (...) {  // a failed dialog counts as cancelled
+    }
+    std::lock_guard lock(shared->mutex);
+    shared->answer = std::move(answer);
+    shared->done = true;
+  }).detach();
+}
+
+bool AsyncFileDialog::poll(std::optional<std::string>& answer) {
+  const std::shared_ptr<Shared> shared = shared_;  // outlives the lock below
+  if (!shared) return false;
+  std::lock_guard lock(shared->mutex);
+  if (!shared->done) return false;
+  answer = std::move(shared->answer);
+  shared_.reset();
+  return true;
 }
 
 }  // namespace glint

@@ -22,17 +22,23 @@ double FrameBudget::export_slice_seconds() const {
   return std::min(kMaxExportSliceSeconds, std::max(config_.trace_seconds, 2 * ui));
 }
 
+double FrameBudget::trace_budget(int d) const {
+  if (d < config_.drag_max_divisor) return config_.trace_seconds;
+  const double ui = overhead_ > 0 ? overhead_ : 0.0;
+  return std::max({config_.trace_seconds, config_.drag_frame_seconds - ui, config_.drag_min_trace_seconds});
+}
+
 int FrameBudget::samples(int64_t pixels) const {
   if (cost_ <= 0 || pixels <= 0) return 1;
-  double k = config_.trace_seconds / (cost_ * static_cast<double>(pixels));
+  double k = frame_trace_seconds() / (cost_ * static_cast<double>(pixels));
   return static_cast<int>(std::clamp(std::floor(k), 1.0, static_cast<double>(config_.max_samples)));
 }
 
 int FrameBudget::wanted_divisor(int64_t full_pixels) const {
-  // Smallest d with full_pixels / d^2 * cost <= budget, i.e. one sample per pixel fits.
-  double d = std::sqrt(std::max(0.0, cost_ * static_cast<double>(full_pixels) / config_.trace_seconds));
-  int want = static_cast<int>(std::ceil(d - 1e-9));
-  return std::clamp(want, config_.min_divisor, config_.max_divisor);
+  // Smallest d with full_pixels / d^2 * cost <= trace_budget(d): one sample per pixel fits.
+  for (int d = config_.min_divisor; d < config_.max_divisor; ++d)
+    if (cost_ * static_cast<double>(full_pixels) / (double(d) * d) <= trace_budget(d)) return d;
+  return std::max(config_.min_divisor, config_.max_divisor);
 }
 
 void FrameBudget::record(int samples, int64_t pixels, double seconds, int64_t full_pixels) {
@@ -50,7 +56,7 @@ void FrameBudget::record(int samples, int64_t pixels, double seconds, int64_t fu
   // Finer only when the finer size fits with 30% headroom for several frames in a row.
   if (want < divisor_) {
     double fine_seconds = cost_ * static_cast<double>(full_pixels) / (double(want) * want);
-    if (fine_seconds * 1.3 > config_.trace_seconds) want += 1;
+    if (fine_seconds * 1.3 > trace_budget(want)) want += 1;
     if (want < divisor_) {
       pending_frames_ = want == pending_ ? pending_frames_ + 1 : 1;
       pending_ = want;
@@ -75,7 +81,7 @@ int PreviewResolution::update(const FrameBudget& budget, const PreviewFrame& f) 
   // scene that became heavier without an edit, such as a new shader variant): back to fluid.
   // 1.5x above what refinement accepts, so that the two never alternate.
   const int64_t level_pixels = f.full_pixels / (int64_t(divisor_) * divisor_);
-  if (divisor_ < budget.divisor() && budget.pass_seconds(level_pixels) > 1.5 * c.idle_trace_seconds) {
+  if (divisor_ < budget.divisor() && budget.pass_seconds(level_pixels) > 1.5 * c.refine_max_pass_seconds) {
     divisor_ = budget.divisor();
     last_change_ = f.now_seconds;
     return divisor_;
@@ -85,7 +91,7 @@ int PreviewResolution::update(const FrameBudget& budget, const PreviewFrame& f) 
   if (settled && divisor_ > c.min_divisor && budget.cost() > 0) {
     const int finer = std::max(c.min_divisor, divisor_ / 2);
     const int64_t finer_pixels = f.full_pixels / (int64_t(finer) * finer);
-    if (budget.pass_seconds(finer_pixels) <= c.idle_trace_seconds) {
+    if (budget.pass_seconds(finer_pixels) <= c.refine_max_pass_seconds) {
       divisor_ = finer;
       last_change_ = f.now_seconds;
     }
@@ -97,7 +103,7 @@ int PreviewResolution::samples(const FrameBudget& budget, const PreviewFrame& f,
   const FrameBudgetConfig& c = budget.config();
   const double pass = budget.pass_seconds(pixels);
   // At the fluid level (or when a pass fits a fluid frame anyway): the frame budget.
-  if (divisor_ >= budget.divisor() || pass <= c.trace_seconds) return budget.samples(pixels);
+  if (divisor_ >= budget.divisor() || pass <= budget.frame_trace_seconds()) return budget.samples(pixels);
   if (f.user_active) return 0;  // a finer level than fluid: wait for the user
   double k = c.idle_trace_seconds / std::max(pass, 1e-12);
   return static_cast<int>(std::clamp(std::floor(k), 1.0, static_cast<double>(c.max_samples)));

@@ -19,9 +19,22 @@ struct FrameBudgetConfig {
   int max_samples = 64;          // per frame, so that edits still feel immediate
   int max_divisor = 16;          // never coarser than 1/16 of the framebuffer per axis
   int min_divisor = 1;           // 1: full framebuffer resolution allowed
+  // Where the frame target would leave the preview coarser than 1/drag_max_divisor (a slow
+  // device, a heavy scene), a drag may take frames of up to drag_frame_seconds instead (about
+  // 11 fps): a readable quarter-resolution image is worth more than fluid blocks.
+  // The drag's tracing keeps at least drag_min_trace_seconds even where the UI alone takes
+  // most of drag_frame_seconds (a loaded machine): the resolution matters more then.
+  int drag_max_divisor = 4;
+  double drag_frame_seconds = 0.09;
+  double drag_min_trace_seconds = 0.04;
   // The automatic preview's idle refinement (PreviewResolution below).
   double idle_delay_seconds = 0.3;  // no edit and no input for this long: refine one step
-  double idle_trace_seconds = 0.25; // an idle frame may trace this long (the UI still answers)
+  // An idle frame traces at most this long, so that the UI answers within about 0.1 s; a pass
+  // that takes longer is traced in bands of rows over several frames (ViewportRenderer).
+  double idle_trace_seconds = 0.06;
+  // Idle refinement goes to a finer level while one pass there takes at most this long (in
+  // bands): full resolution on all but the largest windows of the slowest devices.
+  double refine_max_pass_seconds = 4.0;
   int refine_min_samples = 4;       // samples per pixel a level shows before the next step
 };
 
@@ -34,8 +47,12 @@ class FrameBudget {
 
   // The resolution divisor for a framebuffer of this many pixels (1 = full resolution).
   int divisor() const { return divisor_; }
-  // Samples per pixel to trace this frame at `pixels` trace pixels (>= 1).
+  // Samples per pixel to trace this frame at `pixels` trace pixels (>= 1), within
+  // frame_trace_seconds().
   int samples(int64_t pixels) const;
+  // Seconds of tracing a frame at divisor() may take: config().trace_seconds, or the drag's
+  // longer frame where the divisor needed it (drag_max_divisor).
+  double frame_trace_seconds() const { return trace_budget(divisor_); }
 
   // Records a finished pass: `samples` per pixel over `pixels` pixels took `seconds`.
   // `full_pixels` is the framebuffer's pixel count (the divisor is chosen against it).
@@ -61,6 +78,8 @@ class FrameBudget {
 
  private:
   int wanted_divisor(int64_t full_pixels) const;
+  // The trace seconds a frame at divisor `d` may take (see drag_max_divisor).
+  double trace_budget(int d) const;
 
   FrameBudgetConfig config_;
   double cost_ = 0;
@@ -82,7 +101,8 @@ struct PreviewFrame {
 // The automatic preview's resolution over time (docs/DESIGN.md §2.7). An edit drops it to the
 // frame budget's divisor, so that dragging stays fluid; when nothing is edited and the user is
 // idle, it refines by halving the divisor down to full resolution, as long as one pass at the
-// finer level fits config().idle_trace_seconds. The level changes only then: frames that edit
+// finer level fits config().refine_max_pass_seconds (traced in bands of at most
+// idle_trace_seconds a frame). The level changes only then: frames that edit
 // nothing (a click, hovering, exposure and tonemap, which only re-run the tonemap pass) keep
 // the level and the accumulation.
 class PreviewResolution {
@@ -94,7 +114,8 @@ class PreviewResolution {
   int update(const FrameBudget& budget, const PreviewFrame& frame);
   // Samples per pixel to trace this frame at the current level (`pixels` trace pixels); 0
   // pauses the accumulation (kept, not restarted) while the user is busy and one pass at this
-  // fine level would stall the UI.
+  // fine level would stall the UI. At a level finer than fluid, at least 1: a pass longer than
+  // idle_trace_seconds is then the caller's to trace in bands.
   int samples(const FrameBudget& budget, const PreviewFrame& frame, int64_t pixels) const;
 
  private:

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,14 @@ struct TimeSeries {
   bool empty() const { return t.empty(); }
 };
 
+// The y range of a log axis for `series`: its positive finite values (zero, negative and absent
+// ones have no place on it) with some room, at least a factor of 10 tall; nullopt when it has
+// none (the plot then shows a fixed decade range instead of ImPlot's degenerate fit).
+struct LogRange {
+  double lo, hi;
+};
+std::optional<LogRange> log_axis_range(const TimeSeries& series);
+
 // The panel's series. record() is called once per frame with that frame's statistics.
 struct RenderStatsHistory {
   TimeSeries samples_per_second{"samples per pixel per second"};
@@ -32,7 +41,8 @@ struct RenderStatsHistory {
   TimeSeries estimated_error{"estimated error"};
 
   // Frame time `now_s` (any clock); a restart of the accumulation (or the first call) starts
-  // every series again at t = 0.
+  // every series again at t = 0. Frames that add no samples (paused at a target, during an
+  // export, or inside a pass traced in bands) add no points: the curves stand still.
   void record(const FrameStats& stats, double now_s);
   // A point of the error series at `now_s` on the same clock as record().
   void add_error(double now_s, double error);

@@ -22,6 +22,7 @@
 
 #include "editor/document.h"
 #include "editor/export_job.h"
+#include "editor/file_dialogs.h"
 #include "editor/recent_and_recovery.h"
 #include "editor/render_stats_history.h"
 #include "editor/shown_values.h"
@@ -111,6 +112,12 @@ struct DocumentFlow {
   } prompt;
   int slot_material = -1;  // the texture slot a chosen file goes to
   int slot_index = 0;      // 0 colour, 1 emission, 2 roughness
+
+  // The native dialog open now, on its own thread (editor/file_dialogs.h): the window keeps
+  // redrawing and a modal blocks the editor's input until it answers (poll_file_dialog).
+  AsyncFileDialog dialog;
+  FilePurpose dialog_purpose = FilePurpose::open_project;
+  AsyncFileDialog::Runner dialog_runner;  // empty: tinyfd (tests put a stand-in here)
 };
 
 // A transient line in the status bar and a modal for errors.
@@ -132,6 +139,10 @@ struct ExportUi {
   ExportSettings settings;
   std::unique_ptr<ExportJob> job;
   std::string message;
+  // Where the dialog drew the running export's progress bar and its time left this frame
+  // (screen coordinates): the bar's hover help goes below the bar, never over the time left.
+  ImVec2 progress_min{0, 0}, progress_max{0, 0};
+  ImVec2 time_left_min{0, 0}, time_left_max{0, 0};
 };
 
 // Deleting a material that objects use waits for the user's answer.
@@ -201,7 +212,10 @@ void draw_recovery_offer(Document& doc, EditorState& state);
 void draw_export_dialog(Document& doc, EditorState& state);
 // The viewport's mouse input and overlays (gizmo, focus tool); the image goes under it.
 void draw_viewport(Document& doc, EditorState& state);
-// Puts this frame's viewport image (and why it is not updating, if so) under the panels.
+// What the viewport and the status line say before the first image.
+inline constexpr const char* kCompilingShaders = "Compiling shaders...";
+// Puts this frame's viewport image (and why it is not updating, if so) under the panels; before
+// the first image, kCompilingShaders in its middle.
 void show_viewport_image(const ViewportView& view);
 // The viewport's request for this frame: the panel's size in framebuffer pixels; no tracing
 // while an export runs.
@@ -210,6 +224,11 @@ bool export_running(const EditorState& state);
 // The export dialog's first settings: the film's size, a file named after the project in the
 // remembered export folder (else the user's Pictures folder or home, never beside the project).
 ExportSettings default_export_settings(const Document& doc, const EditorState& state);
+// "Viewport aspect": keeps the width, takes the viewport's aspect, and frames what it shows.
+void use_viewport_aspect(ExportSettings& settings, const ViewportView& view);
+// The scene an export renders: `scene`, with the camera the viewport shows where the settings
+// frame the viewport (use_viewport_aspect) and their size still has its aspect.
+Scene export_scene(const Scene& scene, const ExportSettings& settings);
 // "about 12 s left" from the fraction done and the seconds so far.
 std::string export_eta(double progress, double elapsed_seconds);
 void step_export(EditorState& state, double slice_seconds);  // one slice of a running export
@@ -220,8 +239,13 @@ void step_export(EditorState& state, double slice_seconds);  // one slice of a r
 struct StatusPiece {
   std::string text;
   ImVec4 color;
+  int priority = 0;  // 0: kept longest (the spp, messages, errors); higher ones go first
 };
 std::vector<StatusPiece> status_line(const EditorState& state, double now_s);
+// The pieces that fit in `width` pixels at the current font, in their order: the least
+// important (highest priority number) are left out first; where the most important left still
+// do not fit, the last one is cut short with "...". Needs an ImGui frame (text sizes).
+std::vector<StatusPiece> fit_status_line(std::vector<StatusPiece> pieces, float width);
 
 // Deletes a sphere, quad, texture or unused material at once; a material in use is deleted only
 // after the prompt (naming its users) is confirmed. Afterwards nothing is selected.
@@ -253,8 +277,12 @@ bool import_document(Document& doc, EditorState& state, const std::filesystem::p
 bool export_document(const Document& doc, EditorState& state, const std::filesystem::path& file);
 bool save_document(Document& doc, EditorState& state, bool save_as);
 void new_document(Document& doc, EditorState& state);
-// Asks for a file (native dialog, else the typed-path prompt) and applies it.
+// Asks for a file (native dialog, else the typed-path prompt) and applies it once chosen (a
+// native dialog answers in a later frame: poll_file_dialog).
 void choose_file(Document& doc, EditorState& state, FilePurpose purpose);
+// While a native dialog is open: a modal that blocks the editor's input; once it answers, the
+// chosen file is applied (a cancelled save-as ends the action that asked for it).
+void poll_file_dialog(Document& doc, EditorState& state);
 void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, const std::string& file);
 // Where a file chooser starts: a folder for opening and for images (never a pre-filled
 // project file name), the current file for saving and exporting.

@@ -175,10 +175,9 @@ void choose_file(Document& doc, EditorState& state, FilePurpose purpose) {
   DialogSpec spec = dialog_spec(purpose);
   const std::string start = file_dialog_start(doc, state, purpose);
   if (state.flow.native_dialogs) {
-    auto chosen = spec.save ? native_save_dialog(spec.title, start, spec.filters, spec.description)
-                            : native_open_dialog(spec.title, start, spec.filters, spec.description);
-    if (chosen) apply_chosen_file(doc, state, purpose, *chosen);
-    else if (purpose == FilePurpose::save_project_as) state.flow.pending = DocAction::none;
+    if (state.flow.dialog.running()) return;  // one at a time
+    state.flow.dialog_purpose = purpose;
+    state.flow.dialog.start({spec.save, spec.title, start, spec.description, spec.filters}, state.flow.dialog_runner);
     return;
   }
   state.flow.prompt.request_open = true;
@@ -240,6 +239,7 @@ void apply_chosen_file(Document& doc, EditorState& state, FilePurpose purpose, c
 }
 
 void draw_document_modals(Document& doc, EditorState& state) {
+  poll_file_dialog(doc, state);
   if (state.flow.open_unsaved_prompt) {
     ImGui::OpenPopup(kUnsavedPopup);
     state.flow.open_unsaved_prompt = false;

@@ -1,9 +1,12 @@
 // The export dialog: size, samples or time, format; progress bar and cancel while it runs.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
+#include "editor/film_frame.h"
 #include "editor/ui.h"
 #include "editor/ui_context.h"
 #include "editor/ui_tip.h"
@@ -21,6 +24,25 @@ ExportSettings default_export_settings(const Document& doc, const EditorState& s
   s.width = doc.scene.film.width;
   s.height = doc.scene.film.height;
   return s;
+}
+
+void use_viewport_aspect(ExportSettings& s, const ViewportView& view) {
+  const float w = std::max(1.0f, view.size.x), h = std::max(1.0f, view.size.y);
+  s.height = std::clamp(int(s.width * h / w + 0.5f), 1, 16384);
+  s.viewport_w = w;
+  s.viewport_h = h;
+}
+
+// Whether the size still has the aspect "Viewport aspect" gave it (to its rounding).
+static bool frames_viewport(const ExportSettings& s) {
+  if (!(s.viewport_w > 0) || !(s.viewport_h > 0)) return false;
+  return std::abs(int(s.width * s.viewport_h / s.viewport_w + 0.5f) - s.height) <= 1;
+}
+
+Scene export_scene(const Scene& scene, const ExportSettings& s) {
+  Scene out = scene;
+  if (frames_viewport(s)) out.camera = viewport_camera(scene.camera, {s.viewport_w, s.viewport_h}, scene.film);
+  return out;
 }
 
 std::string export_eta(double progress, double elapsed_seconds) {
@@ -41,12 +63,18 @@ void step_export(EditorState& state, double slice_seconds) {
   if (!export_running(state)) return;
   state.export_ui.job->step(slice_seconds);
   switch (state.export_ui.job->state()) {
-    case ExportJob::State::done:
-      state.export_ui.message = "Wrote " + state.export_ui.job->settings().output.string();
+    case ExportJob::State::done: {
+      // What it reached: a time-limited export stops at as many samples as fitted.
+      const ExportJob& job = *state.export_ui.job;
+      char reached[96];
+      std::snprintf(reached, sizeof reached, " (%lld spp in %.1f s)", static_cast<long long>(job.samples()),
+                    job.wall_seconds());
+      state.export_ui.message = "Wrote " + job.settings().output.string() + reached;
       if (!state.export_ui.job->denoise_note().empty())
         state.export_ui.message += " (" + state.export_ui.job->denoise_note() + ")";
       show_message(state, state.export_ui.message);
       break;
+    }
     case ExportJob::State::failed:
       state.export_ui.message = "Export failed: " + state.export_ui.job->error();
       show_error(state, state.export_ui.message);
@@ -81,14 +109,15 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   if (ImGui::SmallButton("Film size")) {
     s.width = doc.scene.film.width;
     s.height = doc.scene.film.height;
+    s.viewport_w = s.viewport_h = 0;
   }
   tip("The film's size (Camera > Film size): exactly what the viewport's frame shows.");
   ImGui::SameLine();
-  if (ImGui::SmallButton("Viewport aspect")) {
-    s.height = std::max(1, int(s.width * state.viewport.size.y / std::max(1.0f, state.viewport.size.x) + 0.5f));
-  }
-  tip("Keep the width; set the height to the viewport panel's aspect.");
-  if (int64_t(s.width) * doc.scene.film.height != int64_t(s.height) * doc.scene.film.width)
+  if (ImGui::SmallButton("Viewport aspect")) use_viewport_aspect(s, state.viewport);
+  tip("Keep the width; set the height to the viewport panel's aspect and frame all it shows.");
+  if (frames_viewport(s))
+    ImGui::TextColored(ImVec4(0.6f, 0.85f, 1, 1), "Frames the whole viewport, margins included.");
+  else if (int64_t(s.width) * doc.scene.film.height != int64_t(s.height) * doc.scene.film.width)
     ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "Not the film's aspect (%dx%d): the viewport's frame shows the film.",
                        doc.scene.film.width, doc.scene.film.height);
   int budget = s.use_time ? 1 : 0;
@@ -131,12 +160,21 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   ImGui::Separator();
   if (running) {
     ExportJob& job = *state.export_ui.job;
+    ExportUi& ui = state.export_ui;
+    // The time left above the bar: the bar's hover help opens below it.
+    ImGui::TextUnformatted(export_eta(job.progress(), job.wall_seconds()).c_str());
+    ui.time_left_min = ImGui::GetItemRectMin();
+    ui.time_left_max = ImGui::GetItemRectMax();
     char overlay[96];
     std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
                   static_cast<long long>(job.samples()), job.wall_seconds());
     ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
-    tip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
-    ImGui::TextUnformatted(export_eta(job.progress(), job.wall_seconds()).c_str());
+    ui.progress_min = ImGui::GetItemRectMin();
+    ui.progress_max = ImGui::GetItemRectMax();
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetNextWindowPos(ImVec2(ui.progress_min.x, ui.progress_max.y + ImGui::GetStyle().ItemSpacing.y));
+      ImGui::SetTooltip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
+    }
     if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
       job.cancel();
       state.export_ui.message = "Export cancelled";
@@ -147,7 +185,8 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
       try {
         s.estimator = state.viewport.estimator;
-        state.export_ui.job = std::make_unique<ExportJob>(doc.scene, s, state.shader_worker, state.trace_backend);
+        state.export_ui.job =
+            std::make_unique<ExportJob>(export_scene(doc.scene, s), s, state.shader_worker, state.trace_backend);
         state.export_ui.message.clear();
         const std::filesystem::path folder = std::filesystem::absolute(s.output).parent_path();
         if (state.settings.export_dir != folder) {  // remembered for the next session

@@ -9,39 +9,61 @@
 
 namespace glint {
 
-std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
+namespace {
+
+// The viewport's figures, each through `figure(priority, format, ...)`.
+template <class Figure>
+void status_figures(const EditorState& state, Figure&& figure) {
   const FrameStats& s = state.viewport.frame.stats;
-  char text[512];
-  int n = std::snprintf(text, sizeof text, "%lld spp   %.1f spp/s   %.1f ms/frame   %dx%d",
-                        static_cast<long long>(s.spp), s.spp_per_second, s.ms_per_frame, s.trace_width,
-                        s.trace_height);
-  // Without a reference: from the pixels' sample variance (renderer/error_estimate.h).
-  if (s.estimated_relmse >= 0)
-    n += std::snprintf(text + n, sizeof text - n, "   est. relMSE %.2e", s.estimated_relmse);
-  if (s.target_reached)
-    n += std::snprintf(text + n, sizeof text - n, " (target %.2e reached: paused)", state.viewport.target_error);
+  figure(0, "%lld spp", static_cast<long long>(s.spp));
+  figure(4, "%.1f spp/s", s.spp_per_second);
+  figure(3, "%.1f ms/frame", s.ms_per_frame);
+  figure(2, "%dx%d", s.trace_width, s.trace_height);
   float full_w = state.viewport.size.x * state.viewport.framebuffer_scale;
   if (s.trace_width > 0 && full_w > s.trace_width * 1.5f)
-    n += std::snprintf(text + n, sizeof text - n, " (preview 1/%d)", int(full_w / s.trace_width + 0.5f));
-  n += std::snprintf(text + n, sizeof text - n, "   %s", s.gl_renderer.c_str());
-  if (!s.denoise_status.empty() && n < int(sizeof text))
-    std::snprintf(text + n, sizeof text - n, "   %s", s.denoise_status.c_str());
-  std::vector<StatusPiece> pieces{{text, ImGui::GetStyleColorVec4(ImGuiCol_Text)}};
+    figure(2, "(preview 1/%d)", int(full_w / s.trace_width + 0.5f));
+  if (s.pass_progress > 0) figure(2, "(pass %.0f%%)", s.pass_progress * 100);
+  // Without a reference: from the pixels' sample variance (renderer/error_estimate.h).
+  if (s.estimated_relmse >= 0) figure(3, "est. relMSE %.2e", s.estimated_relmse);
+  if (s.target_reached) figure(1, "(target %.2e reached: paused)", state.viewport.target_error);
+  figure(6, "%s", s.gl_renderer.c_str());
+  if (!s.denoise_status.empty()) figure(5, "%s", s.denoise_status.c_str());
+}
+
+}  // namespace
+
+std::vector<StatusPiece> status_line(const EditorState& state, double now_s) {
+  const FrameStats& s = state.viewport.frame.stats;
+  const ImVec4 plain = ImGui::GetStyleColorVec4(ImGuiCol_Text);
+  std::vector<StatusPiece> pieces;
+  // Figures first in the line, each with its own separator and its importance (0 first kept).
+  auto figure = [&](int priority, const char* format, auto... args) {
+    char text[256];
+    std::snprintf(text, sizeof text, format, args...);
+    pieces.push_back({(pieces.empty() ? "" : "   ") + std::string(text), plain, priority});
+  };
+  if (!state.viewport.frame.display_texture && s.scene_problem.empty() && s.trace_width == 0) {
+    figure(0, "%s", kCompilingShaders);  // no figures before the first image
+  } else {
+    status_figures(state, figure);
+  }
   if (state.autosave && !state.autosave->last_error().empty())
-    pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1)});
+    pieces.push_back({"  |  autosave failed: " + state.autosave->last_error(), ImVec4(1, 0.45f, 0.4f, 1), 0});
   if (!state.messages.note.empty() && now_s < state.messages.note_until)
-    pieces.push_back({"  |  " + state.messages.note, ImVec4(1, 0.6f, 0.3f, 1)});
+    pieces.push_back({"  |  " + state.messages.note, ImVec4(1, 0.6f, 0.3f, 1), 1});
   if (!state.messages.message.empty() && now_s < state.messages.message_until) {
-    pieces.push_back({"  |  " + state.messages.message, ImVec4(1, 0.85f, 0.4f, 1)});
+    pieces.push_back({"  |  " + state.messages.message, ImVec4(1, 0.85f, 0.4f, 1), 0});
   } else if (export_running(state)) {
+    char text[64];
     std::snprintf(text, sizeof text, "  |  exporting %.0f%%", state.export_ui.job->progress() * 100);
-    pieces.push_back({text, ImVec4(0.5f, 0.9f, 1, 1)});
+    pieces.push_back({text, ImVec4(0.5f, 0.9f, 1, 1), 0});
   }
   return pieces;
 }
 
 void draw_status_bar(Document&, EditorState& state) {
-  const std::vector<StatusPiece> pieces = status_line(state, ImGui::GetTime());
+  const float width = ImGui::GetContentRegionAvail().x;
+  const std::vector<StatusPiece> pieces = fit_status_line(status_line(state, ImGui::GetTime()), width);
   for (size_t i = 0; i < pieces.size(); ++i) {
     if (i > 0) ImGui::SameLine(0, 0);
     ImGui::PushStyleColor(ImGuiCol_Text, pieces[i].color);

@@ -3,7 +3,13 @@
 // ImGui's DockBuilder: outliner left, properties right, render statistics below the viewport,
 // the viewport in the centre, side widths in ImGui units times the content scale. The user can
 // then drag, resize, tab and float the panels; the layout is saved in the user's config folder
-// (never the working directory), atomically, and restored at the next start.
+// (never the working directory), atomically, and restored at the next start. ImGui keeps the
+// panels' sizes in pixels: the content scale and the dock space's size are saved with them, and
+// a layout restored at another scale has its sizes multiplied by the ratio (a panel keeps its
+// size in ImGui units), one restored on a smaller window than it was saved for shrinks with it
+// where the viewport would keep less than a quarter of the window, and one that still leaves
+// the viewport less than that is replaced by the default layout. A window moved to a monitor
+// of another scale rescales the panels the same way.
 #pragma once
 
 #include <filesystem>
@@ -26,7 +32,8 @@ inline constexpr float kOutlinerWidth = 270, kPropertiesWidth = 340, kStatsHeigh
 std::filesystem::path layout_file_path(const std::filesystem::path& dir = {});
 
 // The dock space for this frame, over the main viewport's work area (call after the menu and
-// status bars, before the panels' Begin). Builds the default layout when none was loaded.
+// status bars, before the panels' Begin). Builds the default layout when none was loaded, and
+// adapts a loaded one to `content_scale` and the window (above).
 // Returns the dock space's id.
 ImGuiID dock_panels(float content_scale);
 // Throws away the current layout; the next dock_panels() builds the default one.

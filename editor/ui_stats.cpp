@@ -13,8 +13,14 @@ namespace glint {
 void plot_time_series(const char* plot_id, const TimeSeries& series, bool log_y, float height) {
   if (!ImPlot::BeginPlot(plot_id, ImVec2(-1, height), ImPlotFlags_NoMenus | ImPlotFlags_NoBoxSelect)) return;
   // The legend names the curve; the y axis stays unlabelled (a long name would be cut).
-  ImPlot::SetupAxes("seconds", nullptr, ImPlotAxisFlags_AutoFit, ImPlotAxisFlags_AutoFit);
-  if (log_y) ImPlot::SetupAxisScale(ImAxis_Y1, ImPlotScale_Log10);
+  // A log axis gets its range from the positive values (log_axis_range), else a fixed decade:
+  // ImPlot's fit of an empty or one-point series is degenerate there.
+  ImPlot::SetupAxes("seconds", nullptr, ImPlotAxisFlags_AutoFit, log_y ? ImPlotAxisFlags_None : ImPlotAxisFlags_AutoFit);
+  if (log_y) {
+    ImPlot::SetupAxisScale(ImAxis_Y1, ImPlotScale_Log10);
+    const std::optional<LogRange> range = log_axis_range(series);
+    ImPlot::SetupAxisLimits(ImAxis_Y1, range ? range->lo : 1e-3, range ? range->hi : 1.0, ImPlotCond_Always);
+  }
   if (!series.empty()) {
     ImPlotSpec spec;
     spec.LineWeight = ui_units(1);  // one pixel at scale 1, two at scale 2, like the style's sizes

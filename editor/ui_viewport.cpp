@@ -221,6 +221,13 @@ void show_viewport_image(const ViewportView& view) {
       dl->AddImage(static_cast<ImTextureID>(view.frame.display_texture), origin, end);
     else
       dl->AddRectFilled(origin, end, IM_COL32(20, 20, 24, 255));
+    // Before the first image (the trace programs compile for seconds on a slow device).
+    if (!view.frame.display_texture && view.frame.stats.scene_problem.empty()) {
+      const char* text = kCompilingShaders;
+      const ImVec2 t = ImGui::CalcTextSize(text);
+      dl->AddText(ImVec2(origin.x + (view.size.x - t.x) * 0.5f, origin.y + (view.size.y - t.y) * 0.5f),
+                  IM_COL32(230, 230, 230, 255), text);
+    }
     // The film frame: what Export writes is inside; the margins are dimmed.
     const FilmRect f = film_rect({view.size.x, view.size.y}, view.film);
     const ImVec2 f0(origin.x + f.offset.x, origin.y + f.offset.y);

@@ -35,6 +35,7 @@ struct FrameStats {
   double ms_per_frame = 0;
   int trace_width = 0, trace_height = 0;
   int divisor = 1;         // the viewport's framebuffer pixels per trace pixel, per axis
+  float pass_progress = 0; // a pass traced in bands: the fraction of its rows done (0: none)
   bool restarted = false;  // this frame's sync reset the accumulation
   double estimated_relmse = -1;  // the image's estimated relMSE; -1 while unknown
   bool target_reached = false;   // paused at the request's target_error

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "editor/frame_budget.h"
+#include "editor/held_image.h"
 #include "editor/viewport_denoiser.h"
 #include "editor/viewport_frame.h"
 #include "renderer/gpu_renderer.h"
@@ -22,6 +23,10 @@ constexpr double kViewportEstimateSeconds = 0.25;
 
 // The viewport stops tracing here (about a million samples per pixel: converged long before).
 constexpr int64_t kViewportMaxSamples = int64_t(1) << 20;
+
+// A pass over fewer pixels is traced whole even where it takes longer than a frame's slice:
+// its time is then mostly each call's fixed cost (set-up, the wait), which bands would repeat.
+constexpr int64_t kMinBandedPixels = int64_t(1) << 16;
 
 class ViewportRenderer {
  public:
@@ -44,6 +49,9 @@ class ViewportRenderer {
   const PreviewResolution& preview() const { return preview_; }
 
  private:
+  // Traces `samples` per pixel, or the next band of a pass too long for `slice_seconds`.
+  void trace_slice(int samples, double slice_seconds, int64_t full_pixels);
+
   GpuRenderer renderer_;
   FrameBudget budget_;
   PreviewResolution preview_;  // the automatic mode's level
@@ -56,9 +64,12 @@ class ViewportRenderer {
   int64_t rate_samples_ = 0;
   double spp_rate_ = 0;
   double last_trace_seconds_ = 0;
+  double pass_seconds_ = 0;  // the bands of the pass under way so far
   std::chrono::steady_clock::time_point last_estimate_{};
   double estimated_relmse_ = -1;
   std::unique_ptr<ViewportDenoiser> denoiser_;  // from the first request to denoise
+  unsigned last_denoised_ = 0;
+  HeldImage held_;  // the coarser level's image while a finer one traces its first pass
 };
 
 }  // namespace glint

@@ -26,9 +26,44 @@ TEST(FrameBudget, SlowDeviceGetsACoarserPreviewWithinTheBudget) {
   FrameBudget b;
   const int64_t full = 700 * 750;
   double last = simulate(b, 1 / 0.35e6, full, 50);
-  EXPECT_GT(b.divisor(), 4);
-  EXPECT_LE(last, b.config().trace_seconds * 1.0001);
+  EXPECT_GT(b.divisor(), 2);
+  EXPECT_LE(last, b.frame_trace_seconds() * 1.0001);
+  EXPECT_LE(b.frame_trace_seconds(), b.config().drag_frame_seconds);
   EXPECT_LE(b.divisor(), b.config().max_divisor);
+}
+
+// Where the 25 ms frame target would leave a drag's preview at 1/7 (blocks nobody can read), a
+// quarter resolution that fits the drag's longer frames (about 11 fps) is used instead; the UI's
+// own time per frame counts against it.
+TEST(FrameBudget, DragKeepsAQuarterResolutionWhereItFitsTenFramesASecond) {
+  const int64_t full = 700 * 600;
+  const double cost = 1.0 / full;  // one sample per pixel at full resolution: 1 s
+  FrameBudget b;
+  double last = simulate(b, cost, full, 50);
+  EXPECT_EQ(b.divisor(), 4);
+  EXPECT_GT(last, b.config().trace_seconds);  // longer than the fluid target...
+  EXPECT_LE(last, b.config().drag_frame_seconds);  // ...within the drag's frame
+  // 30 ms of UI per frame leaves the drag 60 ms: 1/5 then.
+  FrameBudget busy;
+  for (int i = 0; i < 80; ++i) {
+    const double traced = simulate(busy, cost, full, 1);
+    busy.record_frame(0.030 + traced, traced);
+  }
+  EXPECT_EQ(busy.divisor(), 5);
+  // Where the UI alone takes 100 ms a frame (a loaded machine), the drag still traces 40 ms.
+  FrameBudget loaded;
+  for (int i = 0; i < 80; ++i) {
+    const double traced = simulate(loaded, cost, full, 1);
+    loaded.record_frame(0.100 + traced, traced);
+  }
+  EXPECT_DOUBLE_EQ(loaded.frame_trace_seconds(), loaded.config().drag_min_trace_seconds);
+  EXPECT_EQ(loaded.divisor(), 5);
+  EXPECT_LE(cost * double(full) / (double(busy.divisor()) * busy.divisor()), busy.frame_trace_seconds() * 1.0001);
+  // A device quick enough for the fluid target keeps it.
+  FrameBudget quick;
+  simulate(quick, cost / 40, full, 50);
+  EXPECT_LE(quick.divisor(), 2);
+  EXPECT_DOUBLE_EQ(quick.frame_trace_seconds(), quick.config().trace_seconds);
 }
 
 TEST(FrameBudget, FastDeviceTracesFullResolutionWithManySamples) {
@@ -38,7 +73,7 @@ TEST(FrameBudget, FastDeviceTracesFullResolutionWithManySamples) {
   EXPECT_EQ(b.divisor(), 1);
   EXPECT_GT(b.samples(full), 10);
   EXPECT_LE(b.samples(full), b.config().max_samples);
-  EXPECT_LE(last, b.config().trace_seconds * 1.0001);
+  EXPECT_LE(last, b.frame_trace_seconds() * 1.0001);
 }
 
 TEST(FrameBudget, DivisorIsStableUnderNoise) {
@@ -146,24 +181,29 @@ struct PreviewSim {
   }
 };
 
-TEST(PreviewResolution, IdleRefinesToFullResolutionWhereAPassFitsTheIdleBudget) {
+TEST(PreviewResolution, IdleRefinesToFullResolutionWhereAPassFitsTheRefineLimit) {
   // A fast device: every level fits; idle refinement reaches full resolution.
   PreviewSim fast(1e-10, 1920 * 1080);
   fast.frame(true, false);
   for (int i = 0; i < 400 && fast.preview.divisor() > 1; ++i) fast.frame(false, false);
   EXPECT_EQ(fast.preview.divisor(), 1);
-  // llvmpipe-like (0.35 M samples/s) in a 700x750 viewport: it refines while one pass at the
-  // finer level fits idle_trace_seconds, and stops there.
+  // llvmpipe-like (0.35 M samples/s) in a 700x750 viewport: a full-resolution pass takes 1.5 s,
+  // traced in bands by the viewport; idle refinement goes all the way.
   PreviewSim slow(1 / 0.35e6, 700 * 750);
   for (int i = 0; i < 10; ++i) slow.frame(true, false);  // the budget learns the cost
-  const int fluid = slow.preview.divisor();
+  EXPECT_GT(slow.preview.divisor(), 1);
   for (int i = 0; i < 400; ++i) slow.frame(false, false);
-  const int d = slow.preview.divisor();
-  EXPECT_LT(d, fluid);
-  const double idle = slow.budget.config().idle_trace_seconds;
-  EXPECT_LE(slow.cost * double(slow.full) / (double(d) * d), idle);
+  EXPECT_EQ(slow.preview.divisor(), 1);
+  // A 2560x1600 viewport on it: 11.7 s a pass at full resolution; it stops at the finest level
+  // whose pass fits refine_max_pass_seconds.
+  PreviewSim huge(1 / 0.35e6, 2560 * 1600);
+  for (int i = 0; i < 10; ++i) huge.frame(true, false);
+  for (int i = 0; i < 400; ++i) huge.frame(false, false);
+  const int d = huge.preview.divisor();
+  const double limit = huge.budget.config().refine_max_pass_seconds;
+  EXPECT_LE(huge.cost * double(huge.full) / (double(d) * d), limit);
   const int finer = std::max(1, d / 2);
-  EXPECT_TRUE(d == 1 || slow.cost * double(slow.full) / (double(finer) * finer) > idle);
+  EXPECT_TRUE(d == 1 || huge.cost * double(huge.full) / (double(finer) * finer) > limit);
 }
 
 TEST(PreviewResolution, OnlyEditsAndRefinementChangeTheLevel) {
@@ -185,18 +225,19 @@ TEST(PreviewResolution, OnlyEditsAndRefinementChangeTheLevel) {
   EXPECT_GT(sim.preview.divisor(), refined);
   for (int i = 0; i < 20; ++i) sim.frame(true, true);
   EXPECT_LE(sim.cost * double(sim.full) / (double(sim.preview.divisor()) * sim.preview.divisor()),
-            sim.budget.config().trace_seconds * 1.0001);
+            sim.budget.frame_trace_seconds() * 1.0001);
 }
 
 TEST(PreviewResolution, ALevelTooSlowForAnIdleFrameGoesBackToFluid) {
-  // The first frame's guess (before any measurement) on a slow device in a large viewport.
-  PreviewSim sim(1 / 0.35e6, 2560 * 1600);
+  // The first frame's guess (before any measurement) on a slow device (a heavy scene) in a large
+  // viewport: one pass at that level would take 13 s.
+  PreviewSim sim(1 / 0.02e6, 2560 * 1600);
   sim.frame(true, false);
   const int guess = sim.preview.divisor();
   for (int i = 0; i < 5; ++i) sim.frame(false, false);
   EXPECT_GT(sim.preview.divisor(), guess);
   const int d = sim.preview.divisor();
-  EXPECT_LE(sim.cost * double(sim.full) / (double(d) * d), 1.5 * sim.budget.config().idle_trace_seconds);
+  EXPECT_LE(sim.cost * double(sim.full) / (double(d) * d), 1.5 * sim.budget.config().refine_max_pass_seconds);
 }
 
 TEST(PreviewResolution, AtTheFluidLevelInputNeverPausesTheAccumulation) {

@@ -134,13 +134,89 @@ TEST_F(UiDockInputTest, LayoutIsSavedToAndLoadedFromTheConfigFolder) {
   EXPECT_NE(text.str().find("[Window][Outliner]"), std::string::npos) << text.str();
   destroy_ui_context();
 
-  start(1, ImVec2(800, 500));  // the default layout on a narrow window: the cap, 30% of 800
-  EXPECT_NEAR(window(kOutlinerWindow).Size.x, 800 * 0.3f, 2.0f);  // to the splitter's whole pixel
+  start(1, ImVec2(850, 500));  // the default layout on a narrow window: the cap, 30% of 850
+  EXPECT_NEAR(window(kOutlinerWindow).Size.x, 850 * 0.3f, 2.0f);  // to the splitter's whole pixel
   destroy_ui_context();
 
-  start(1, ImVec2(800, 500), file);
+  start(1, ImVec2(850, 500), file);  // the viewport keeps over a quarter: the saved widths stay
   EXPECT_NEAR(window(kOutlinerWindow).Size.x, kOutlinerWidth, 1.0f);
   EXPECT_NE(window(kViewportWindow).DockNode, nullptr);
+}
+
+// The panels' sizes of a layout saved at one content scale, restored at `scale` on `display`.
+struct PanelSizes {
+  float outliner, properties, stats_h, view_w, view_h;
+};
+
+// A layout saved in a session at content scale 2 (3200x1800) and restored at scale 1 (1600x900),
+// and the other way round: the panels keep their size in ImGui units (the default layout's at
+// the new scale), the viewport its share of the window, the plots their room.
+TEST_F(UiDockInputTest, LayoutSavedAtOneContentScaleFitsAnother) {
+  auto sizes = [&] {
+    return PanelSizes{window(kOutlinerWindow).Size.x, window(kPropertiesWindow).Size.x, window(kStatsWindow).Size.y,
+                      state_.viewport.size.x, state_.viewport.size.y};
+  };
+  auto session = [&](float scale, const fs::path& load, const fs::path& save) {
+    start(scale, ImVec2(1600 * scale, 900 * scale), load);
+    const PanelSizes s = sizes();
+    std::string error;
+    if (!save.empty()) {
+      EXPECT_TRUE(save_layout_if_needed(save, /*force=*/true, error)) << error;
+    }
+    destroy_ui_context();
+    return s;
+  };
+  test::TempDir config;
+  const fs::path at2 = config.path() / "at2.ini", at1 = config.path() / "at1.ini";
+  const PanelSizes default1 = session(1, {}, at1), default2 = session(2, {}, at2);
+  std::stringstream text;
+  text << std::ifstream(at2).rdbuf();
+  EXPECT_NE(text.str().find("[Glint][Layout]\nScale=2.000\nSize=3200,"), std::string::npos) << text.str();
+
+  for (const auto& [restored, expected] : {std::pair{session(1, at2, {}), default1}, std::pair{session(2, at1, {}), default2}}) {
+    EXPECT_NEAR(restored.outliner, expected.outliner, 2.0f);
+    EXPECT_NEAR(restored.properties, expected.properties, 2.0f);
+    EXPECT_NEAR(restored.stats_h, expected.stats_h, 2.0f);
+    EXPECT_NEAR(restored.view_w, expected.view_w, 3.0f);
+    EXPECT_NEAR(restored.view_h, expected.view_h, 3.0f);
+  }
+  EXPECT_NEAR(default2.outliner, 2 * default1.outliner, 2.0f);
+}
+
+// A layout whose panels leave the viewport a strip (saved on a larger window, or an older file
+// without its scale): shrunk with the window where the file says its size, else rebuilt; the
+// viewport keeps at least a quarter of the window either way.
+TEST_F(UiDockInputTest, LayoutThatSqueezesTheViewportIsAdapted) {
+  test::TempDir config;
+  const fs::path file = config.path() / "wide.ini";
+  start(1, ImVec2(3000, 1000));
+  // Wide side panels, as a user may leave them on a large monitor.
+  ImGuiDockNode* outliner = window(kOutlinerWindow).DockNode;
+  ImGuiDockNode* properties = window(kPropertiesWindow).DockNode;
+  outliner->SizeRef.x = 1000;
+  properties->SizeRef.x = 1100;
+  frame();
+  frame();
+  ASSERT_NEAR(window(kOutlinerWindow).Size.x, 1000, 2.0f);
+  std::string error;
+  ASSERT_TRUE(save_layout_if_needed(file, /*force=*/true, error)) << error;
+  destroy_ui_context();
+
+  start(1, ImVec2(1500, 800), file);  // half as wide: proportions kept
+  EXPECT_NEAR(window(kOutlinerWindow).Size.x, 500, 3.0f);
+  EXPECT_GE(state_.viewport.size.x, 0.25f * 1500);
+  destroy_ui_context();
+
+  // The same file without its record (an older editor's): the default layout instead.
+  std::stringstream text;
+  text << std::ifstream(file).rdbuf();
+  std::string old = text.str();
+  old.erase(old.find("[Glint][Layout]"), old.find("\n\n", old.find("[Glint][Layout]")) + 2 - old.find("[Glint][Layout]"));
+  std::ofstream(file, std::ios::trunc) << old;
+  start(1, ImVec2(1500, 800), file);
+  EXPECT_NEAR(window(kOutlinerWindow).Size.x, kOutlinerWidth, 2.0f);
+  EXPECT_NEAR(window(kPropertiesWindow).Size.x, kPropertiesWidth, 2.0f);
+  EXPECT_GE(state_.viewport.size.x, 0.25f * 1500);
 }
 
 // Content scale 2 on a display of twice the pixels: text, widgets, panels and the plots' sizes
