@@ -7,6 +7,7 @@
 #include "app/farm_command.h"
 #include "app/merge_command.h"
 #include "app/render_command.h"
+#include "renderer/build_info.h"
 
 namespace {
 
@@ -20,7 +21,7 @@ const char* const kHelp =
     "  glint merge PART.exr... -o OUT.{exr,png,hdr}                join render parts\n"
     "  glint farm slurm PROJECT.glint --spp N --parts K -o OUT     render on a Slurm cluster\n"
     "  glint farm status -o OUT                                   the parts of a farm render\n"
-    "  glint --version                                            the version\n"
+    "  glint --version                                            the version and its commit\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (command == "--version" || command == "-V") {
-    std::printf("glint %s\n", GLINT_VERSION);
+    std::printf("glint %s (commit %s)\n", glint::glint_version(), glint::glint_commit());
     return 0;
   }
 #ifdef GLINT_WITH_EDITOR
