@@ -1,5 +1,5 @@
 // Checks of OpenEXR bytes that tinyexr 1.0.1 (Debian 12's) reads without checking them against
-// the file's size, made before tinyexr parses or decodes them (image_io.cpp). Each returns what
+// the file's size, made before tinyexr parses or decodes them (exr_io.cpp). Each returns what
 // is wrong, or "" when it found nothing wrong; bytes it cannot walk are left to tinyexr, whose
 // own checks report them. All of these were found by the fuzzer (tests/fuzz/fuzz_image.cpp),
 // and its inputs are in tests/fuzz/corpus/image.

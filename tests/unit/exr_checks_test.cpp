@@ -59,7 +59,7 @@ std::vector<unsigned char> piz_file(int width, int height, int pixel_type) {
   return bytes;
 }
 
-// The layout image_io.cpp derives from the header, for a file of piz_file.
+// The layout exr_io.cpp derives from the header, for a file of piz_file.
 ExrScanlineLayout layout_of(const std::vector<unsigned char>& bytes, int width, int height, int bytes_per_pixel) {
   EXRVersion version;
   EXRHeader header;
