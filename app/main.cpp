@@ -8,6 +8,7 @@
 #include "app/farm_command.h"
 #include "app/merge_command.h"
 #include "app/render_command.h"
+#include "renderer/build_info.h"
 
 namespace {
 
@@ -23,7 +24,7 @@ const char* const kHelp =
     "  glint farm status -o OUT                                   the parts of a farm render\n"
     "  glint convert IN OUT                                       a scene between .glint, Mitsuba\n"
     "                                                             3 (.xml) and pbrt-v4 (.pbrt)\n"
-    "  glint --version                                            the version\n"
+    "  glint --version                                            the version and its commit\n"
 #ifdef GLINT_WITH_EDITOR
     "\n"
     "Editor options (the editor needs a display; on a server use xvfb-run):\n"
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (command == "--version" || command == "-V") {
-    std::printf("glint %s\n", GLINT_VERSION);
+    std::printf("glint %s (commit %s)\n", glint::glint_version(), glint::glint_commit());
     return 0;
   }
 #ifdef GLINT_WITH_EDITOR

@@ -29,6 +29,7 @@
 #include "renderer/image.h"
 #include "renderer/image_metrics.h"
 #include "renderer/project_file.h"
+#include "renderer/render_metadata.h"
 #include "renderer/render_output.h"
 #include "renderer/render_part.h"
 #include "renderer/render_policy.h"
@@ -502,7 +503,9 @@ int write_outputs(const Options& o, const Scene& scene, GpuRenderer& renderer, d
   if (o.samples) {
     save_render_part(renderer, part_info(scene, o.estimator, width, height, *o.samples), o.output);
   } else {
-    const RenderOutputReport written = save_render_output(renderer, scene.display, o.output, o.output_options);
+    RenderOutputOptions output_options = o.output_options;
+    output_options.metadata = render_metadata(scene, o.estimator, renderer.sample_count());
+    const RenderOutputReport written = save_render_output(renderer, scene.display, o.output, output_options);
     if (written.denoised)
       std::fprintf(stderr, "glint: denoised (biased) with Open Image Denoise on the %s in %.2f s\n",
                    written.device.c_str(), written.denoise_seconds);

@@ -68,3 +68,11 @@ file(COPY "${_oidn_dir}/pyoidn-2.5.1.0.dist-info/licenses/LICENSE"
           "${_oidn_dir}/pyoidn-2.5.1.0.dist-info/METADATA" DESTINATION "${_notices}/pyoidn")
 set(GLINT_OIDN_AVAILABLE ON)
 message(STATUS "Open Image Denoise ${OIDN_VERSION}: libraries next to the executables in ${CMAKE_BINARY_DIR}")
+
+set(GLINT_OIDN_LIBRARIES ${_oidn_libs})
+# Installed (cmake/Packaging.cmake) in lib/glint/, where glint looks from its own folder, with the
+# notices in the documentation's licenses/.
+foreach(lib IN LISTS _oidn_libs)
+  install(FILES "${CMAKE_BINARY_DIR}/${lib}" DESTINATION lib/glint)
+endforeach()
+install(DIRECTORY "${_notices}" DESTINATION share/doc/glint/licenses)

@@ -175,7 +175,9 @@ bool start_session(Document& doc, EditorState& state, const EditorOptions& optio
     state.flow.recent_files = add_recent_file(f, problem);
     report_note(state, problem);
   };
-  state.flow.projects_dir = find_projects_dir({executable_dir(), fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
+  // Installed, the examples are in ../share/glint/projects from bin/glint (cmake/Packaging.cmake).
+  state.flow.projects_dir = find_projects_dir({executable_dir() / ".." / "share" / "glint", executable_dir(),
+                                               fs::current_path(), fs::path(GLINT_SOURCE_DIR)});
   // The user's settings (preview mode, export folder); screenshot runs read but never write them.
   state.settings = load_editor_settings(note);
   report_note(state, note);

@@ -11,6 +11,7 @@
 #include "renderer/gl_context.h"
 #include "renderer/gpu_renderer.h"
 #include "renderer/image.h"
+#include "renderer/render_metadata.h"
 #include "renderer/render_output.h"
 #include "renderer/render_policy.h"
 #include "renderer/render_session.h"
@@ -116,7 +117,9 @@ bool ExportJob::step(double slice_seconds) {
 void ExportJob::finish() {
   if (!settings_.denoise) {
     // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
-    save_render_output(*renderer_, scene_.display, settings_.output, {});
+    RenderOutputOptions options;
+    options.metadata = render_metadata(scene_, settings_.estimator, renderer_->sample_count());
+    save_render_output(*renderer_, scene_.display, settings_.output, options);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state_ = State::done;
     return;
@@ -124,10 +127,11 @@ void ExportJob::finish() {
   // Read back here (GL), denoise and write on a worker: seconds at full HD on a CPU.
   RenderImages images = read_render_images(*renderer_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  RenderOutputOptions options;
+  options.denoise = true;
+  options.metadata = render_metadata(scene_, settings_.estimator, renderer_->sample_count());
   denoising_ = std::async(std::launch::async, [images = std::move(images), display = scene_.display,
-                                               output = settings_.output]() {
-    RenderOutputOptions options;
-    options.denoise = true;
+                                               output = settings_.output, options = std::move(options)]() {
     const RenderOutputReport report = save_render_images(images, display, output, options);
     if (report.denoise_failed) throw std::runtime_error(report.note);  // the noisy image is written
     if (!report.denoised) return report.note;

@@ -5,6 +5,8 @@
 
 #include "editor/scene_edits.h"
 #include "editor/ui.h"
+#include "editor/ui_context.h"
+#include "renderer/build_info.h"
 #include "renderer/texture_slots.h"
 
 namespace glint {
@@ -78,7 +80,7 @@ void draw_help_windows(EditorState& state) {
   if (state.show_about) {
     if (ImGui::Begin("About Glint", &state.show_about,
                      ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::Text("Glint %s", GLINT_VERSION);
+      ImGui::TextUnformatted(glint_software().c_str());
       ImGui::TextUnformatted("A scene editor with a progressive GPU path tracer.");
       ImGui::Text("Dear ImGui %s", IMGUI_VERSION);
       ImGui::TextDisabled("glint --help lists the command line.");

@@ -40,13 +40,17 @@ struct OidnLibrary {
 
 #if defined(__linux__) && defined(__x86_64__)
 // The folders to look in, first match wins: $GLINT_OIDN_DIR, the executable's own folder (the
-// build copies the libraries there); then the loader's search path.
+// build copies the libraries there), ../lib/glint from it (an installed glint: bin/glint and
+// lib/glint/, cmake/Packaging.cmake, whatever the prefix); then the loader's search path.
 std::vector<std::filesystem::path> library_folders() {
   std::vector<std::filesystem::path> folders;
   if (const char* dir = std::getenv("GLINT_OIDN_DIR"); dir && *dir) folders.emplace_back(dir);
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) folders.push_back(exe.parent_path());
+  if (!ec) {
+    folders.push_back(exe.parent_path());
+    folders.push_back(exe.parent_path().parent_path() / "lib" / "glint");
+  }
   return folders;
 }
 
@@ -72,8 +76,8 @@ void* open_library(std::string& why) {
   if (void* handle = dlopen("libOpenImageDenoise.so.2", RTLD_NOW | RTLD_LOCAL)) return handle;
   if (why.empty()) {
     const char* error = dlerror();
-    why = std::string("libOpenImageDenoise.so.2.5.1 not found next to the executable, in $GLINT_OIDN_DIR or on "
-                      "the library path") + (error ? std::string(" (") + error + ")" : std::string()) +
+    why = std::string("libOpenImageDenoise.so.2.5.1 not found next to the executable, in ../lib/glint from it, in "
+                      "$GLINT_OIDN_DIR or on the library path") + (error ? std::string(" (") + error + ")" : std::string()) +
           "; scripts/setup.sh fetches it and the build copies it next to glint";
   }
   return nullptr;

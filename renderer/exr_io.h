@@ -25,7 +25,9 @@ Image decode_exr(const std::filesystem::path& path, const std::vector<unsigned c
 // tinyexr's error message `err` (freed here), without its trailing newline, or the error code.
 std::string take_exr_error(const char* err, int code);
 
-// RGBA float32, ZIP compressed unless the image is smaller than 16x16. Throws ImageError.
-std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image);
+// RGBA float32, ZIP compressed unless the image is smaller than 16x16, with `attributes` as
+// string attributes. Throws ImageError.
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image,
+                                      const ExrAttributes& attributes = {});
 
 }  // namespace glint

@@ -2,6 +2,7 @@
 #include "renderer/exr_io.h"
 
 #include "renderer/image_file.h"
+#include "renderer/image_metadata.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -121,15 +122,18 @@ void check_image_to_save(const std::filesystem::path& path, const Image& image) 
 
 // The channels in A, B, G, R order (sorted by name) as tinyexr's SaveEXR writes them and most
 // viewers expect.
-std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image) {
-  return encode_exr_layers(path, {ExrLayer{"", &image, "RGBA"}});
+std::vector<unsigned char> encode_exr(const std::filesystem::path& path, const Image& image,
+                                      const ExrAttributes& attributes) {
+  return encode_exr_layers(path, {ExrLayer{"", &image, "RGBA"}}, attributes);
 }
 
-void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers) {
+void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers,
+                     const ImageMetadata& metadata) {
   if (lower_extension(path) != ".exr") image_fail(path, "layers can only be written to an .exr file");
   if (layers.empty() || !layers[0].image || layers[0].image->width <= 0 || layers[0].image->height <= 0)
     image_fail(path, "cannot save an empty or inconsistent image");
-  write_image_file(path, encode_exr_layers(path, layers));
+  check_image_metadata(path, metadata);
+  write_image_file(path, encode_exr_layers(path, layers, metadata));
 }
 
 void save_exr(const std::filesystem::path& path, const Image& image, const ExrAttributes& attributes,

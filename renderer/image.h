@@ -90,8 +90,11 @@ Image to_linear_image(const TextureImage& texture, ColorEncoding encoding);
 // Writes by extension: .png (values clamped to [0,1], written as 8-bit without further encoding),
 // .hdr (RGB), .exr (RGBA float32), atomically (write_file_atomically, atomic_file.h). Throws
 // ImageError naming the file and the OS reason on failure (the old file is then unchanged)
-// or for an unknown extension.
-void save_image(const std::filesystem::path& path, const Image& image);
+// or for an unknown extension. `metadata`: text entries the file carries (PNG text chunks, Radiance
+// header lines, OpenEXR string attributes: renderer/image_metadata.h), each checked first
+// (check_image_metadata): an entry that breaks the rules is an ImageError and nothing is written.
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+void save_image(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata = {});
 
 // The rule for a render's output (`glint render`, `merge`, `farm`, a farm plan, the editor's
 // export): its name ends in .png, .hdr or .exr, as typed. nullopt when it does, else
@@ -150,8 +153,10 @@ struct ExrLayer {
   // >= 0: the layer is the one channel named `name` (no letters added), taking this component.
   int single_component = -1;
 };
-// Writes the layers (all of one size) as float32 channels, atomically. Throws ImageError.
-void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers);
+// Writes the layers (all of one size) as float32 channels, atomically, with `metadata` as
+// string attributes (as save_image). Throws ImageError.
+void save_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers,
+                     const ImageMetadata& metadata = {});
 // Reads one named layer of an OpenEXR file (layer.R/G/B or layer.X/Y/Z, layer.A if present,
 // else alpha 1). Throws ImageError naming the file, also when the layer is missing.
 Image load_exr_layer(const std::filesystem::path& path, const std::string& layer);

@@ -34,6 +34,8 @@ std::optional<ImageFormat> sniff_format(const std::vector<unsigned char>& bytes)
   return std::nullopt;
 }
 
+}  // namespace
+
 // The chunk layout and CRCs (PNG spec, ISO 15948 sections 5.3 and 15.3 / annex D: CRC-32 with
 // polynomial 0xEDB88320, over type and data); trailing bytes after IEND are ignored as
 // decoders do.
@@ -50,8 +52,6 @@ uint32_t png_crc(const unsigned char* data, size_t size, uint32_t crc) {
   for (size_t i = 0; i < size; ++i) crc = table[(crc ^ data[i]) & 0xff] ^ (crc >> 8);
   return crc;
 }
-
-}  // namespace
 
 void image_fail(const std::filesystem::path& path, const std::string& problem) {
   throw ImageError(path.string() + ": " + problem);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,6 +37,10 @@ enum class ImageFormat { png, jpeg, radiance, openexr };
 
 // The format of image.h that the bytes' signature names, or an ImageError.
 ImageFormat require_image_format(const std::filesystem::path& path, const std::vector<unsigned char>& bytes);
+
+// CRC-32 of a PNG chunk's type and data (ISO 15948 annex D): png_crc(data, size, 0xffffffff) ^
+// 0xffffffff, or continued over several spans.
+uint32_t png_crc(const unsigned char* data, size_t size, uint32_t crc);
 
 // stb_image checks neither the CRC of PNG chunks nor zlib's Adler-32, so a corrupted file can
 // decode to wrong pixels without an error: refuses a PNG whose chunks run past the end or fail

@@ -6,6 +6,7 @@
 
 #include "renderer/exr_io.h"
 #include "renderer/image_file.h"
+#include "renderer/image_metadata.h"
 
 #include <algorithm>
 #include <array>
@@ -350,16 +351,17 @@ ImageInfo probe_image_data(const std::vector<unsigned char>& bytes, const std::f
   return probe_bytes(path, bytes, format);
 }
 
-void save_image(const std::filesystem::path& path, const Image& image) {
+void save_image(const std::filesystem::path& path, const Image& image, const ImageMetadata& metadata) {
   const std::string ext = lower_extension(path);
   if (ext != ".png" && ext != ".hdr" && ext != ".exr")
     image_fail(path, "unknown image extension '" + ext + "' (use .png, .hdr or .exr)");
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
     image_fail(path, "cannot save an empty or inconsistent image");
-  const std::vector<unsigned char> file = ext == ".png"   ? encode_png(path, image)
-                                          : ext == ".hdr" ? encode_hdr(path, image)
-                                                          : encode_exr(path, image);
+  check_image_metadata(path, metadata);
+  const std::vector<unsigned char> file = ext == ".png"   ? with_png_text(encode_png(path, image), metadata)
+                                          : ext == ".hdr" ? with_hdr_header_lines(encode_hdr(path, image), metadata)
+                                                          : encode_exr(path, image, metadata);
   write_image_file(path, file);
 }
 

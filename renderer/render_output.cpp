@@ -38,12 +38,12 @@ namespace {
 // Writes `colour` as `file` by its extension: PNG tonemapped, HDR linear, EXR with the layers
 // asked for (`noisy` beside a denoised colour, the AOVs).
 void write_output(const std::filesystem::path& file, const Image& colour, const Image* noisy,
-                  const AovImages* aovs, const DisplaySettings& display) {
+                  const AovImages* aovs, const DisplaySettings& display, const ImageMetadata& metadata) {
   const std::string ext = file.extension().string();
   if (ext == ".png") {
-    save_image(file, tonemapped(colour, display));
+    save_image(file, tonemapped(colour, display), metadata);
   } else if (ext != ".exr") {
-    save_image(file, colour);
+    save_image(file, colour, metadata);
   } else {
     std::vector<ExrLayer> layers{{"", &colour, "RGBA"}};
     if (noisy) layers.push_back({"noisy", noisy, "RGB"});
@@ -51,7 +51,7 @@ void write_output(const std::filesystem::path& file, const Image& colour, const 
       layers.push_back({"albedo", &aovs->albedo, "RGB"});
       layers.push_back({"N", &aovs->normal, "XYZ"});
     }
-    save_exr_layers(file, layers);
+    save_exr_layers(file, layers, metadata);
   }
 }
 
@@ -66,7 +66,7 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
   const AovImages* layers = options.aovs && !aovs.albedo.pixels.empty() ? &aovs : nullptr;
   // The noisy render first: a denoiser that fails (a device plugin missing or broken, memory
   // exhausted at a large size) must not cost the finished render.
-  write_output(file, noisy, nullptr, layers, display);
+  write_output(file, noisy, nullptr, layers, display, options.metadata);
   if (!options.denoise) return report;
   if (const auto why = denoising_unavailable()) {
     report.note = "denoising is unavailable (" + *why + "): the noisy image was written";
@@ -91,7 +91,7 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
     report.note = std::string("denoising failed (") + e.what() + "): " + file.string() + " holds the noisy image";
     return report;
   }
-  write_output(file, *denoised, &noisy, layers, display);
+  write_output(file, *denoised, &noisy, layers, display, options.metadata);
   report.denoised = true;
   return report;
 }

@@ -11,6 +11,7 @@
 #include "renderer/aov_pass.h"
 #include "renderer/denoiser.h"
 #include "renderer/image.h"
+#include "renderer/image_metadata.h"
 #include "renderer/scene.h"
 
 namespace glint {
@@ -26,6 +27,9 @@ struct RenderOutputOptions {
   // the denoiser fails, it is what the file holds and `note` says so.
   bool denoise = false;
   DenoiseQuality quality = DenoiseQuality::high;
+  // Written into the file: PNG text chunks, Radiance header lines, OpenEXR string attributes
+  // (renderer/image_metadata.h; a render's provenance: renderer/render_metadata.h).
+  ImageMetadata metadata;
 };
 
 struct RenderOutputReport {

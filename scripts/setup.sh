@@ -13,6 +13,7 @@ packages=(
   python3-pip   # pip download of the denoiser's wheel (below)
   clang   # libFuzzer targets and the sanitizer preset (scripts/fuzz.sh, CMakePresets.json)
   slurmctld slurmd slurm-client munge   # the farm test's one-node cluster (tests/farm)
+  dpkg-dev file desktop-file-utils   # the .deb (CPack: dpkg-shlibdeps, file) and its tests (tests/install)
 )
 
 missing=()
