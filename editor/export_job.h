@@ -34,6 +34,8 @@ struct ExportSettings {
   // Denoise the output (renderer/render_output.h; biased): on a worker thread once the target
   // is reached, so the UI keeps running; an EXR keeps the noisy colour as a layer.
   bool denoise = false;
+  // A transparent background (RenderOutputOptions::alpha): PNG or EXR only.
+  bool alpha = false;
 };
 
 // "" when valid, else the problem (shown in the dialog before starting). The size has the

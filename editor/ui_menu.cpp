@@ -56,6 +56,7 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   // Text fields own the keyboard; a modal popup blocks the editor's shortcuts too.
   if (io.WantTextInput || ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel))
     return;
+  handle_region_shortcuts(state);  // Ctrl+B, Ctrl+Alt+B (editor/ui_region.cpp)
   if (io.KeyCtrl) {
     if (key_pressed(ImGuiKey_Z)) {
       if (io.KeyShift) { if (doc.can_redo()) doc.redo(); }
