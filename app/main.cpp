@@ -45,6 +45,7 @@ const char* const kHelp =
     "  click a number field: type a value    File > Examples: example projects\n"
     "  G / R / T: move / rotate / scale gizmo (drag its arrows, rings, squares or circle)\n"
     "  Ctrl+Z / Ctrl+Shift+Z: undo / redo    Ctrl+N/O/S: new, open, save    Ctrl+Q: quit\n"
+    "  Ctrl+B then drag: render region (samples only there)    Ctrl+Alt+B: clear it\n"
     "  drop an image on the window: texture of the selected object (.hdr/.exr: environment)\n"
 #else
     "\n"

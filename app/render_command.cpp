@@ -49,7 +49,7 @@ const char* const kUsage =
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
     "                    [--restart auto|at-once|together]\n"
     "                    [--backend auto|fragment|compute] [--work-group WxH]\n"
-    "                    [--denoise [--denoise-quality fast|high]] [--aovs] [--verbose]\n"
+    "                    [--denoise [--denoise-quality fast|high]] [--aovs] [--alpha] [--verbose]\n"
     "\n"
     "Renders a project headlessly (EGL; no window or display needed). Prints a progress line\n"
     "while it renders, then what it wrote (size, spp, time, samples per second), why it stopped\n"
@@ -108,6 +108,11 @@ const char* const kUsage =
     "  --aovs             .exr only: also write the albedo (albedo.R/G/B) and the normal\n"
     "                     (N.X/Y/Z, world space) at the first surface that is not a perfect\n"
     "                     mirror or smooth glass, averaged over the samples like the colour\n"
+    "  --alpha            a transparent background for compositing (.png or .exr): alpha\n"
+    "                     is the fraction of each pixel's camera rays that hit a surface\n"
+    "                     (0 where the environment shows, fractional on edges); the\n"
+    "                     environment still lights the scene. EXR: premultiplied RGBA;\n"
+    "                     PNG: straight alpha\n"
     "Estimator (not saved in projects; the defaults are unbiased):\n"
     "  --sampler S        random numbers: sobol (the default: Owen-scrambled Sobol points,\n"
     "                     low discrepancy, less noise per sample; each seed is its own\n"
@@ -208,6 +213,10 @@ const std::pair<const char*, Flag> kFlags[] = {
     {"--generic-shader", [](Options& o) { o.generic_shader = true; }},
     {"--denoise", [](Options& o) { o.output_options.denoise = true; }},
     {"--aovs", [](Options& o) { o.output_options.aovs = true; }},
+    {"--alpha", [](Options& o) {
+       o.output_options.alpha = true;
+       o.estimator.transparent_background = true;
+     }},
     {"--verbose", [](Options& o) { o.verbose = true; }},
 };
 
@@ -278,6 +287,8 @@ void parse_argument(Options& o, int argc, char** argv, int& i) {
 void check_sample_options(Options& o) {
   if (o.samples && (o.spp || o.seconds || o.target_error || o.estimator.adaptive))
     throw UsageError{"--samples renders an exact range: it takes no --spp, --time, --target-error or --adaptive"};
+  if (o.samples && o.output_options.alpha)
+    throw UsageError{"--samples writes a render part: --alpha is not for parts"};
   if (o.samples && (o.output_options.denoise || o.output_options.aovs))
     throw UsageError{"--samples writes a render part: denoise the merged image (--denoise and --aovs are not "
                      "for parts)"};
@@ -302,6 +313,8 @@ void check_output_options(const Options& o) {
     throw UsageError{"--denoise is biased and is never used with --reference/--log (the log "
                      "measures the unbiased render's true error): leave one out"};
   if (o.denoise_quality_given && !o.output_options.denoise) throw UsageError{"--denoise-quality needs --denoise"};
+  if (o.output_options.alpha && fs::path(o.output).extension() == ".hdr")
+    throw UsageError{"--alpha needs a .png or .exr output (.hdr has no alpha), not '" + o.output + "'"};
   if (o.output_options.aovs && fs::path(o.output).extension() != ".exr")
     throw UsageError{"--aovs needs an .exr output (the images are written as its layers), not '" + o.output + "'"};
 }

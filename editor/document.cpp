@@ -141,6 +141,11 @@ void Document::end_frame(bool interacting, bool navigated) {
   committed_ = {scene, selection};
 }
 
+void Document::separate_next_step() {
+  end_frame(false);
+  last_step_camera_only_ = false;
+}
+
 void Document::undo() {
   end_frame(false);  // commit a pending edit first so that undo never loses it silently
   if (undo_.empty()) return;

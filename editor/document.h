@@ -51,6 +51,9 @@ class Document {
   bool can_redo() const { return !redo_.empty(); }
   void undo();
   void redo();
+  // Commits any pending edit and makes the next edit a step of its own, even a camera change
+  // right after camera moves (a recalled camera view is one undo step).
+  void separate_next_step();
 
  private:
   struct State {

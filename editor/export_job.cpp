@@ -31,6 +31,7 @@ std::string validate_export_settings(const ExportSettings& s) {
   if (s.use_time && !(s.seconds > 0 && std::isfinite(s.seconds))) return "the time budget must be positive";
   if (s.output.empty()) return "no output file chosen";
   if (const auto problem = output_format_problem(s.output)) return "the output " + *problem;
+  if (s.alpha && s.output.extension() == ".hdr") return "a transparent background needs PNG or EXR (HDR has no alpha)";
   auto dir = std::filesystem::absolute(s.output).parent_path();
   if (!std::filesystem::is_directory(dir)) return "the folder " + dir.string() + " does not exist";
   return "";
@@ -55,7 +56,9 @@ ExportJob::ExportJob(const Scene& scene, ExportSettings settings, std::shared_pt
                                       llvmpipe_thread_count())
                         .backend;
   renderer_ = std::make_unique<GpuRenderer>(options);
-  renderer_->set_options(settings_.estimator);
+  RenderOptions estimator = settings_.estimator;
+  estimator.transparent_background = settings_.alpha;
+  renderer_->set_options(estimator);
   renderer_->set_aovs_enabled(settings_.denoise);
   renderer_->sync(scene_, settings_.width, settings_.height);
   RenderSessionOptions session;
@@ -116,19 +119,22 @@ bool ExportJob::step(double slice_seconds) {
 
 void ExportJob::finish() {
   if (!settings_.denoise) {
-    // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1.
+    // As `glint render` writes: PNG tonemapped with the display settings, HDR/EXR linear, alpha 1
+    // or the coverage.
     RenderOutputOptions options;
     options.metadata = render_metadata(scene_, settings_.estimator, renderer_->sample_count());
+    options.alpha = settings_.alpha;
     save_render_output(*renderer_, scene_.display, settings_.output, options);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     state_ = State::done;
     return;
   }
   // Read back here (GL), denoise and write on a worker: seconds at full HD on a CPU.
-  RenderImages images = read_render_images(*renderer_);
+  RenderImages images = read_render_images(*renderer_, settings_.alpha);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   RenderOutputOptions options;
   options.denoise = true;
+  options.alpha = settings_.alpha;
   options.metadata = render_metadata(scene_, settings_.estimator, renderer_->sample_count());
   denoising_ = std::async(std::launch::async, [images = std::move(images), display = scene_.display,
                                                output = settings_.output, options = std::move(options)]() {

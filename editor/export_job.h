@@ -38,6 +38,8 @@ struct ExportSettings {
   // export frames, margins around the film included (editor/film_frame.h). Applies while the
   // export's size has that aspect; {0, 0}: the film's framing.
   float viewport_w = 0, viewport_h = 0;
+  // A transparent background (RenderOutputOptions::alpha): PNG or EXR only.
+  bool alpha = false;
 };
 
 // "" when valid, else the problem (shown in the dialog before starting). The size has the

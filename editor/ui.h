@@ -51,6 +51,10 @@ struct ViewportView {
   bool denoise = false;  // show the denoised preview (editor/viewport_denoiser.h)
   // How the viewport and exports sample (not saved in the project; see render_options.h).
   RenderOptions estimator;
+  // Region render: only this part of the viewport (fractions of it) takes samples; none: all
+  // (editor/ui_region.cpp). Not saved, not undone, not applied to exports.
+  std::optional<FractionRect> region;
+  bool error_map = false;  // overlay the per-pixel estimated error
   // > 0: the viewport pauses its accumulation at this estimated relMSE (not saved).
   double target_error = 0;
   // This frame's render once the viewport has rendered (before: the last frame's).
@@ -87,6 +91,9 @@ struct ViewportTools {
   // A rotation drag: the angle turned so far and the mouse's last angle about the centre.
   float gizmo_angle = 0;
   float gizmo_last_mouse_angle = 0;
+  bool region_tool = false;      // the next left drag draws the render region (Ctrl+B)
+  bool region_dragging = false;
+  ImVec2 region_start{0, 0};
   int camera_button = -1;  // mouse button driving the camera, -1 none
   bool camera_moved = false;
   ImVec2 press_pos{0, 0};
@@ -202,6 +209,12 @@ void handle_shortcuts(Document& doc, EditorState& state);
 void draw_main_menu(Document& doc, EditorState& state);
 void draw_outliner(Document& doc, EditorState& state);
 void draw_properties(Document& doc, EditorState& state);
+// The properties panel's camera views (editor/ui_camera_views.cpp); the ImGui label of view
+// `index`'s widget `what` ("Go", "Set", "X", "" for its name field).
+void draw_camera_views(Document& doc, EditorState& state);
+std::string view_widget_id(const char* what, int index);
+// The material panel's Preset combo (editor/ui_material_presets.cpp).
+void draw_material_preset_combo(Material& material);
 void draw_status_bar(Document& doc, EditorState& state);
 void draw_render_stats(Document& doc, EditorState& state);
 // One curve of the Render statistics panel, `height` ImGui units tall; log_y: a log10 y axis
@@ -212,6 +225,15 @@ void draw_recovery_offer(Document& doc, EditorState& state);
 void draw_export_dialog(Document& doc, EditorState& state);
 // The viewport's mouse input and overlays (gizmo, focus tool); the image goes under it.
 void draw_viewport(Document& doc, EditorState& state);
+// Region render and the error map (editor/ui_region.cpp): Ctrl+B arms the region tool and
+// Ctrl+Alt+B clears the region; region_drag takes the viewport's left drag while the tool is
+// armed (true: the mouse is its); the toolbar's Region, Clear region and Error map buttons end
+// at `top_right`; the overlays (the map, its legend, the region's frame) go over the image.
+void handle_region_shortcuts(EditorState& state);
+bool region_drag(EditorState& state, ImVec2 origin, ImVec2 size, bool hovered);
+void clear_region(EditorState& state);
+void draw_region_toolbar(EditorState& state, ImVec2 top_right);
+void draw_region_overlays(const ViewportView& view, ImDrawList* draw_list);
 // What the viewport and the status line say before the first image.
 inline constexpr const char* kCompilingShaders = "Compiling shaders...";
 // Puts this frame's viewport image (and why it is not updating, if so) under the panels; before

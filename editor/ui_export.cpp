@@ -152,6 +152,9 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   tip("Choose the output file in a file dialog.");
   ImGui::Checkbox("Denoise (biased; EXR keeps the noisy layer)", &s.denoise);
   tip("Filter the noise with Open Image Denoise: smoother, but detail may blur (biased).");
+  ImGui::Checkbox("Transparent background (PNG, EXR)", &s.alpha);
+  tip("Alpha is each pixel's coverage: 0 where the environment shows, fractional on edges,\n"
+      "for compositing (the environment still lights the scene; EXR premultiplied).");
   ImGui::PopItemWidth();
   ImGui::EndDisabled();
 

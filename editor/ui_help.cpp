@@ -25,6 +25,7 @@ constexpr ControlLine kControls[] = {
     {"Drag a gizmo arrow (move)", "move the selection along a world axis"},
     {"Drag a gizmo ring (rotate)", "turn a quad about that world axis through its centre"},
     {"Drag a square / the circle (scale)", "scale a quad along that edge / uniformly; a sphere's radius"},
+    {"Ctrl+B, then drag", "render region: only the rectangle takes samples (Ctrl+Alt+B: all again)"},
     {"F", "frame the selection"},
     {"Shift+D", "duplicate the selection, beside it"},
     {"Del", "delete the selection (a material in use asks)"},

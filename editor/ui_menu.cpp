@@ -96,6 +96,7 @@ void handle_shortcuts(Document& doc, EditorState& state) {
   const bool popup_open = ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
   if (popup_open && key_pressed(ImGuiKey_Escape) && !ImGui::GetTopMostPopupModal()) ImGui::ClosePopupsExceptModals();
   if (popup_open) return;  // the editor's shortcuts wait until it is closed
+  handle_region_shortcuts(state);  // Ctrl+B, Ctrl+Alt+B (editor/ui_region.cpp)
   if (io.KeyCtrl) {
     if (key_pressed(ImGuiKey_Z)) {
       if (io.KeyShift) { if (doc.can_redo()) doc.redo(); }

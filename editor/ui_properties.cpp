@@ -152,6 +152,7 @@ void quad_properties(Document& doc, EditorState& state, int i) {
 void material_properties(Document& doc, EditorState& state, int i) {
   Material& m = doc.scene.materials[i];
   name_field(doc, state, doc.selection);
+  draw_material_preset_combo(m);
   const MaterialTypeInfo& info = material_type_info(m.type);
   if (ImGui::BeginCombo("Type", info.name)) {
     for (const MaterialTypeInfo& t : kMaterialTypes) {
@@ -320,6 +321,7 @@ void draw_properties(Document& doc, EditorState& state) {
   } else {
     section_title("Camera");
     camera_properties(doc);
+    draw_camera_views(doc, state);
     sampling_properties(state);
   }
   // The selected object's material right below it: the common edit needs no second click.

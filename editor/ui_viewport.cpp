@@ -109,6 +109,7 @@ void draw_viewport(Document& doc, EditorState& state) {
   // The gizmo's mode buttons first: where they are, they take the mouse from the item below.
   const float inset = ui_units(6);
   draw_gizmo_toolbar(state.tools, ImVec2(origin.x + inset, origin.y + inset));
+  draw_region_toolbar(state, ImVec2(origin.x + size.x - inset, origin.y + inset));
   ImGui::SetCursorScreenPos(origin);
   // One item over the whole image: ImGui then knows a drag here is in progress.
   ImGui::InvisibleButton("##viewport", size,
@@ -123,8 +124,9 @@ void draw_viewport(Document& doc, EditorState& state) {
   if (hovered && !focusing && tools.gizmo_handle < 0 && tools.camera_button < 0)
     tools.gizmo_hover = gizmo_hit(gizmo, tools.gizmo_mode, io.MousePos);
 
-  // Presses start a gizmo drag or a camera gesture.
-  if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && tools.gizmo_hover >= 0) {
+  // Presses start a region, a gizmo drag or a camera gesture.
+  if (region_drag(state, origin, size, hovered)) {
+  } else if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && tools.gizmo_hover >= 0) {
     start_gizmo_drag(doc, tools, gizmo, tools.gizmo_hover, io.MousePos);
   } else if (hovered && tools.camera_button < 0) {
     for (int b : {ImGuiMouseButton_Left, ImGuiMouseButton_Right, ImGuiMouseButton_Middle})
@@ -183,7 +185,8 @@ void draw_viewport(Document& doc, EditorState& state) {
   gizmo = make_gizmo(doc, tools.gizmo_mode, origin, size);  // where the object is now
   draw_gizmo(gizmo, tools.gizmo_mode, tools.gizmo_hover, tools.gizmo_handle);
   const char* hint = nullptr;
-  if (tools.focus_tool) hint = "Focus tool: click a surface";
+  if (tools.region_tool) hint = "Region: drag a rectangle to render only there (Ctrl+Alt+B clears)";
+  else if (tools.focus_tool) hint = "Focus tool: click a surface";
   else if (tools.gizmo_mode == GizmoMode::rotate && doc.selection.kind == SelectionKind::sphere)
     hint = "Rotate: a sphere looks the same turned (select a quad)";
   if (hint) dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255), hint);
@@ -204,6 +207,8 @@ ViewportRequest viewport_request(const EditorState& state) {
   r.film_width = v.film.width;
   r.film_height = v.film.height;
   r.user_active = v.user_active;
+  r.region = v.region;
+  r.error_map = v.error_map;
   return r;
 }
 
@@ -242,6 +247,7 @@ void show_viewport_image(const ViewportView& view) {
       dl->AddRectFilled(ImVec2(f1.x, origin.y), end, dim);
     }
     dl->AddRect(f0, f1, IM_COL32(255, 255, 255, 90));
+    draw_region_overlays(view, dl);
     // The selection's outline (Blender's orange), over the image.
     if (view.outline.size() >= 2) {
       dl->AddPolyline(view.outline.data(), int(view.outline.size()), IM_COL32(0, 0, 0, 140), ImDrawFlags_Closed, 3.5f);

@@ -3,9 +3,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "renderer/render_options.h"
+#include "renderer/sample_region.h"
 
 namespace glint {
 
@@ -27,6 +29,10 @@ struct ViewportRequest {
   // The user holds a widget or a viewport drag, or moved or clicked the mouse this frame: the
   // automatic preview does not refine then (editor/frame_budget.h).
   bool user_active = false;
+  // Region render: only these pixels (fractions of the image) take samples (GpuRenderer::
+  // set_sample_region); nullopt: all.
+  std::optional<FractionRect> region;
+  bool error_map = false;  // draw the error map (ViewportFrame::error_map_texture)
 };
 
 struct FrameStats {
@@ -48,6 +54,7 @@ struct FrameStats {
 // the figures of the status bar.
 struct ViewportFrame {
   unsigned display_texture = 0;
+  unsigned error_map_texture = 0;  // with ViewportRequest::error_map (renderer/error_map.h)
   FrameStats stats;
 };
 

@@ -95,8 +95,13 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   }
   stats.target_reached = targeted && synced && renderer_.sample_count() >= kErrorTargetMinSamples &&
                          estimated_relmse_ >= 0 && estimated_relmse_ <= request.target_error;
+  const std::optional<PixelRect> region =
+      request.region ? region_pixels(*request.region, renderer_.width(), renderer_.height()) : std::nullopt;
+  renderer_.set_sample_region(region);
   if (request.trace && synced && !stats.target_reached && renderer_.sample_count() < kViewportMaxSamples) {
-    const int64_t pixels = int64_t(renderer_.width()) * renderer_.height();
+    // The budget's pixel-samples are those traced: the region's only.
+    const int64_t pixels = region ? int64_t(region->x1 - region->x0) * (region->y1 - region->y0)
+                                  : int64_t(renderer_.width()) * renderer_.height();
     int k = request.samples_per_frame > 0 ? request.samples_per_frame
             : automatic                   ? preview_.samples(budget_, preview_frame, pixels)
                                           : budget_.samples(pixels);
@@ -137,6 +142,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   // A new level's first pass, traced in bands: the previous level's image until it ends.
   if (renderer_.sample_count() == 0 && held_.texture()) out.display_texture = held_.texture();
   else if (renderer_.sample_count() > 0) held_.release();
+  if (request.error_map && synced) out.error_map_texture = renderer_.error_map();
   stats.spp = renderer_.sample_count();
   stats.estimated_relmse = estimated_relmse_;
   stats.spp_per_second = spp_rate_;

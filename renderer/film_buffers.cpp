@@ -1,5 +1,6 @@
 #include "renderer/film_buffers.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "renderer/gl_objects.h"
@@ -95,6 +96,18 @@ Image FilmBuffers::read_variance() const {
   Image image = read_rgba(variance_[latest_], width_, height_);
   const Image samples = read_rgba(compensation_[latest_], width_, height_);
   for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = samples.pixels[i];
+  return image;
+}
+
+Image FilmBuffers::read_coverage() const {
+  Image image = read_rgba(variance_[latest_], width_, height_);
+  const Image taken = read_rgba(compensation_[latest_], width_, height_);
+  const Image discarded = read_rgba(accumulation_[latest_], width_, height_);
+  for (size_t i = 0; i < image.pixels.size(); i += 4) {
+    const float finite = taken.pixels[i + 3] - discarded.pixels[i + 3];
+    const float coverage = finite > 0 ? std::clamp(image.pixels[i + 3] / finite, 0.0f, 1.0f) : 0.0f;
+    for (int c = 0; c < 4; ++c) image.pixels[i + c] = coverage;
+  }
   return image;
 }
 

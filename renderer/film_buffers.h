@@ -61,6 +61,9 @@ class FilmBuffers {
   // last drawn (the caller runs update_display first).
   Image read_accumulation() const;
   Image read_variance() const;
+  // Coverage (GpuRenderer::read_coverage): the variance's a (covered samples) over the finite
+  // samples (compensation's a, taken, less accumulation's a, discarded).
+  Image read_coverage() const;
   Image read_display() const;
 
  private:

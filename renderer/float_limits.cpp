@@ -80,6 +80,12 @@ std::vector<ProjectError> check_float_limits(const Scene& scene) {
   Limits l;
   l.coordinates("camera.position", scene.camera.position);
   l.coordinates("camera.target", scene.camera.target);
+  // A saved view becomes the camera when recalled: the same limits.
+  for (size_t i = 0; i < scene.views.size(); ++i) {
+    const std::string path = child_path(index_path("views", i), "camera");
+    l.coordinates(child_path(path, "position"), scene.views[i].camera.position);
+    l.coordinates(child_path(path, "target"), scene.views[i].camera.target);
+  }
 
   const Environment& env = scene.environment;
   if (env.texture.empty()) {

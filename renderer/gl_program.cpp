@@ -137,4 +137,8 @@ void GlProgram::set(const char* name, glm::ivec2 v) {
   glProgramUniform2i(id_, location(name), v.x, v.y);
 }
 
+void GlProgram::set(const char* name, glm::ivec4 v) {
+  glProgramUniform4i(id_, location(name), v.x, v.y, v.z, v.w);
+}
+
 }  // namespace glint

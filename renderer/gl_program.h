@@ -45,6 +45,7 @@ class GlProgram {
   void set(const char* name, float v);
   void set(const char* name, glm::vec3 v);
   void set(const char* name, glm::ivec2 v);
+  void set(const char* name, glm::ivec4 v);
 
  private:
   struct Deferred {};

@@ -138,6 +138,19 @@ void GpuRenderer::reset_accumulation() {
   timers_.reset();
   film_.clear();
   if (aov_pass_) aov_pass_->clear();
+  per_pixel_counts_ = false;
+  ++accumulation_version_;
+}
+
+AdaptiveUniforms GpuRenderer::adaptive_uniforms() const {
+  AdaptiveUniforms u{options_.adaptive, adaptive_threshold_, options_.adaptive_min_samples,
+                     options_.adaptive_every};
+  if (region_ && !region_->empty()) {
+    u.region_on = true;
+    u.region = {region_->x0, region_->y0, region_->x1, region_->y1};
+  }
+  u.per_pixel_counts = per_pixel_counts_;
+  return u;
 }
 
 // The exact variant for the scene's features if it is ready, else a ready one that covers
@@ -202,6 +215,8 @@ void GpuRenderer::begin_pass(int samples) {
     adaptive_threshold_ = static_cast<float>(estimate_error().relmse_per_sample);
     threshold_samples_ = samples_;
   }
+  // From the first pass with a region on, pixels' counts may differ until the next reset.
+  if (region_ && !region_->empty()) per_pixel_counts_ = true;
   pass_.samples = samples;
   pass_.next_row = 0;
   pass_.program = &choose_trace_program();
@@ -225,6 +240,7 @@ int GpuRenderer::trace_rows(int rows) {
     passes_ += band.draws;
     pass_ = {};
     film_.mark_display_stale();
+    ++accumulation_version_;
     // After the pass, so that a driver without parallel compilation (Mesa's llvmpipe links in
     // glLinkProgram) at least has this pass queued first.
     if (last_pass_generic()) start_variant_if_missing();
@@ -255,6 +271,20 @@ Image GpuRenderer::read_accumulation() const {
 
 Image GpuRenderer::read_variance() const {
   return samples_ > 0 ? film_.read_variance() : Image::filled(film_.width(), film_.height(), 0.0f);
+}
+
+GLuint GpuRenderer::error_map() {
+  if (film_.width() <= 0) return 0;
+  if (!error_map_) error_map_ = std::make_unique<ErrorMap>();
+  if (error_map_version_ == accumulation_version_ && error_map_texture_) return error_map_texture_;
+  const TraceTargets t = film_.targets(film_.latest());
+  error_map_texture_ = error_map_->draw(t.accumulation, t.compensation, t.variance, film_.width(), film_.height());
+  error_map_version_ = accumulation_version_;
+  return error_map_texture_;
+}
+
+Image GpuRenderer::read_coverage() const {
+  return samples_ > 0 ? film_.read_coverage() : zero_image(film_.width(), film_.height());
 }
 
 Image GpuRenderer::read_display() {

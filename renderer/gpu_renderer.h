@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -26,10 +27,12 @@
 #include "renderer/aov_pass.h"
 #include "renderer/bvh_tables.h"
 #include "renderer/error_estimate.h"
+#include "renderer/error_map.h"
 #include "renderer/film_buffers.h"
 #include "renderer/image.h"
 #include "renderer/program_variants.h"
 #include "renderer/render_options.h"
+#include "renderer/sample_region.h"
 #include "renderer/scene.h"
 #include "renderer/scene_digest.h"
 #include "renderer/scene_tables.h"
@@ -94,6 +97,13 @@ class GpuRenderer {
 
   // Takes effect at the next sync, which then restarts the accumulation if they changed.
   void set_options(const RenderOptions& options) { options_ = options; }
+
+  // Region render: from the next pass only the pixels of `region` (clipped to the film) take
+  // samples; the others keep what they hold. No reset: a region drawn over a running preview
+  // refines its part of the image. nullopt: every pixel again (each continues from its own
+  // count). The region does not apply to a pass already under way.
+  void set_sample_region(const std::optional<PixelRect>& region) { region_ = region; }
+  const std::optional<PixelRect>& sample_region() const { return region_; }
   const RenderOptions& options() const { return options_; }
 
   // Adds `samples` samples to every pixel in one pass, with the specialised program for the
@@ -169,6 +179,9 @@ class GpuRenderer {
   // Each pixel's mean squared deviation of its finite samples (rgb) and the samples it has
   // taken (a; below sample_count() only with adaptive sampling).
   Image read_variance() const;
+  // Each pixel's coverage in [0, 1] (rgb and a alike): the fraction of its finite samples whose
+  // camera ray hit a surface rather than the environment; 0 for a pixel without samples.
+  Image read_coverage() const;
 
   // The auxiliary images for the denoiser (renderer/aov_pass.h): when enabled, every trace pass
   // adds the same samples to them; enabling starts them empty, an accumulation reset clears
@@ -176,6 +189,11 @@ class GpuRenderer {
   void set_aovs_enabled(bool enabled);
   bool aovs_enabled() const { return aov_pass_ != nullptr; }
   AovImages read_aovs() const;  // empty images when disabled
+  // The live error map of the latest accumulation (renderer/error_map.h): an RGBA8 texture of
+  // the film's size, drawn again only when the accumulation changed since the last call (0 for
+  // an empty film). Between passes only, as the other read-outs.
+  GLuint error_map();
+
   // The tonemapped display image in [0,1] (calls update_display first).
   Image read_display();
 
@@ -187,9 +205,7 @@ class GpuRenderer {
   TraceBindings bindings() const {
     return {uniforms_, tables_, textures_, film_, vao_, renderer_options_.backend, renderer_options_.work_group};
   }
-  AdaptiveUniforms adaptive_uniforms() const {
-    return {options_.adaptive, adaptive_threshold_, options_.adaptive_min_samples, options_.adaptive_every};
-  }
+  AdaptiveUniforms adaptive_uniforms() const;
   std::unique_ptr<ProgramBuild> start_variant_build(const std::string& defines);
   std::string variant_defines() const;  // the cache key of the synced scene's variant
   GlProgram& choose_trace_program();
@@ -205,6 +221,10 @@ class GpuRenderer {
   FilmBuffers film_;
   std::unique_ptr<ErrorEstimator> estimator_;
   std::unique_ptr<AovPass> aov_pass_;  // while AOVs are enabled
+  std::unique_ptr<ErrorMap> error_map_;  // from the first error_map() on
+  int64_t accumulation_version_ = 0;     // counts passes and resets
+  int64_t error_map_version_ = -1;       // accumulation_version_ the map shows
+  GLuint error_map_texture_ = 0;         // owned by error_map_
   GLuint vao_ = 0;
   bool llvmpipe_ = false;  // the context is Mesa's llvmpipe (its loop limit applies)
   SceneTables tables_;
@@ -233,6 +253,8 @@ class GpuRenderer {
   GeometryCounts counts_;
   DrawSplit draw_split_;
   bool use_bvh_ = false;
+  std::optional<PixelRect> region_;
+  bool per_pixel_counts_ = false;  // a pass since the reset had a region: counts may differ
 };
 
 }  // namespace glint

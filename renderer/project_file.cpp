@@ -54,6 +54,9 @@ E enum_from_string(const std::string& text, bool& ok) {
   return E{};
 }
 
+template <class T>
+T parse_object(const Json& j, const std::string& path, const std::string& file);
+
 // One field of `out` from the object `r` reads; the scene.h default stays when it is absent.
 template <class F, class T>
 void read_field(const ObjectReader& r, const F& f, T& out, const std::string& file) {
@@ -76,6 +79,8 @@ void read_field(const ObjectReader& r, const F& f, T& out, const std::string& fi
     }
   } else if constexpr (std::is_integral_v<M>) {
     r.read_integer(f.key, static_cast<int64_t>(f.check.lo), static_cast<int64_t>(f.check.hi), value);
+  } else if constexpr (kNestedObject<M>) {
+    if (const Json* v = r.find(f.key)) value = parse_object<M>(*v, r.path(f.key), file);
   } else {  // std::array<glm::vec3, 4> or std::array<glm::vec2, 4>: quad corners and uvs
     const Json* rows = r.find(f.key);
     if (!rows) return;
@@ -136,6 +141,7 @@ template <class T>
 constexpr size_t list_limit() {
   if constexpr (std::is_same_v<T, Sphere>) return kMaxSpheres;
   else if constexpr (std::is_same_v<T, Quad>) return kMaxQuads;
+  else if constexpr (std::is_same_v<T, CameraView>) return kMaxCameraViews;
   else return SIZE_MAX;
 }
 
@@ -146,13 +152,18 @@ void parse_list(const ObjectReader& root, const char* key, std::vector<T>& out,
                 const std::string& file) {
   const Json* items = root.array(key);
   if (items && items->size() > list_limit<T>())
-    json_fields::fail(file, key, too_many_problem(items->size(), list_limit<T>(), key));
+    json_fields::fail(file, key, std::is_same_v<T, CameraView>
+                                     ? too_many_views_problem(items->size())
+                                     : too_many_problem(items->size(), list_limit<T>(), key));
   if (items)
     for (size_t i = 0; i < items->size(); ++i)
       out.push_back(parse_object<T>((*items)[i], index_path(key, i), file));
 }
 
 // ---- Writing: every field of every table, in table order. ----
+
+template <class T>
+Json object_to_json(const T& object);
 
 template <class M>
 Json value_to_json(const M& value, unsigned flags) {
@@ -166,6 +177,8 @@ Json value_to_json(const M& value, unsigned flags) {
     return to_string(value);
   } else if constexpr (std::is_integral_v<M>) {
     return value;
+  } else if constexpr (kNestedObject<M>) {
+    return object_to_json(value);
   } else {  // arrays of points
     Json rows = Json::array();
     for (const auto& row : value) rows.push_back(json_fields::vec_to_json(row));
@@ -285,6 +298,10 @@ nlohmann::ordered_json scene_to_json(const Scene& s) {
   visit_scene_parts([&](const char* key, auto member) {
     const auto& part = s.*member;
     using Part = std::remove_const_t<std::remove_reference_t<decltype(part)>>;
+    if constexpr (std::is_same_v<Part, std::vector<CameraView>>) {
+      // Optional: a project without views is written as before (and older versions read it).
+      if (part.empty()) return;
+    }
     if constexpr (IsVector<Part>::value) {
       Json& list = j[key] = Json::array();
       for (const auto& item : part) list.push_back(object_to_json(item));

@@ -52,6 +52,10 @@ constexpr void visit_render_option_fields(V&& v) {
   v(changes_samples("adaptive", &RenderOptions::adaptive));
   v(changes_samples("adaptive_min_samples", &RenderOptions::adaptive_min_samples));
   v(changes_samples("adaptive_every", &RenderOptions::adaptive_every));
+  v(same_samples("transparent_background", &RenderOptions::transparent_background,
+                 "parts are never rendered with it: `glint render --alpha` is refused with "
+                 "--samples, so every part has the opaque background (and old parts keep their "
+                 "digests)"));
 }
 
 constexpr size_t render_option_field_count() {
@@ -63,8 +67,8 @@ constexpr size_t render_option_field_count() {
 // RenderOptions' members, one name each: a new member makes the binding fail to compile. The
 // count beside it is that of the table.
 [[maybe_unused]] inline void every_option_is_listed(const RenderOptions& o) {
-  [[maybe_unused]] const auto& [a, b, c, d, e, f, g, h, i, j, k] = o;
-  static_assert(render_option_field_count() == 11);
+  [[maybe_unused]] const auto& [a, b, c, d, e, f, g, h, i, j, k, l] = o;
+  static_assert(render_option_field_count() == 12);
 }
 
 }  // namespace glint

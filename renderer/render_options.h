@@ -40,6 +40,11 @@ struct RenderOptions {
   bool adaptive = false;
   int adaptive_min_samples = 16;
   int adaptive_every = 8;
+  // A transparent background for compositing (`glint render --alpha`, the export's checkbox):
+  // camera rays that find the environment add nothing, so the image is premultiplied by its
+  // alpha, the primary rays' coverage (GpuRenderer::read_coverage); the environment still
+  // lights the scene.
+  bool transparent_background = false;
   bool operator==(const RenderOptions&) const = default;
 };
 

@@ -29,19 +29,41 @@ Image tonemapped(const Image& linear, const DisplaySettings& display) {
   return out;
 }
 
-RenderImages read_render_images(const GpuRenderer& renderer) {
-  return {render_colour(renderer), renderer.read_aovs()};
+RenderImages read_render_images(const GpuRenderer& renderer, bool coverage) {
+  return {render_colour(renderer), renderer.read_aovs(), coverage ? renderer.read_coverage() : Image{}};
+}
+
+Image with_alpha(const Image& colour, const Image& coverage) {
+  Image out = colour;
+  for (size_t i = 3; i < out.pixels.size() && i < coverage.pixels.size(); i += 4)
+    out.pixels[i] = coverage.pixels[i];
+  return out;
+}
+
+Image tonemapped_straight_alpha(const Image& premultiplied, const DisplaySettings& display) {
+  Image straight = premultiplied;
+  for (size_t i = 0; i < straight.pixels.size(); i += 4) {
+    const float a = premultiplied.pixels[i + 3];
+    for (int c = 0; c < 3; ++c) straight.pixels[i + c] = a > 0 ? straight.pixels[i + c] / a : 0.0f;
+  }
+  Image out = tonemapped(straight, display);
+  for (size_t i = 3; i < out.pixels.size(); i += 4) out.pixels[i] = premultiplied.pixels[i];
+  return out;
 }
 
 namespace {
 
 // Writes `colour` as `file` by its extension: PNG tonemapped, HDR linear, EXR with the layers
 // asked for (`noisy` beside a denoised colour, the AOVs).
-void write_output(const std::filesystem::path& file, const Image& colour, const Image* noisy,
-                  const AovImages* aovs, const DisplaySettings& display, const ImageMetadata& metadata) {
+// With `coverage`, `colour` is premultiplied by it and it becomes the alpha.
+void write_output(const std::filesystem::path& file, const Image& colour_in, const Image* noisy,
+                  const AovImages* aovs, const DisplaySettings& display, const ImageMetadata& metadata,
+                  const Image* coverage) {
+  const Image colour = coverage ? with_alpha(colour_in, *coverage) : colour_in;
   const std::string ext = file.extension().string();
   if (ext == ".png") {
-    save_image(file, tonemapped(colour, display), metadata);
+    save_image(file, coverage ? tonemapped_straight_alpha(colour, display) : tonemapped(colour, display),
+               metadata);
   } else if (ext != ".exr") {
     save_image(file, colour, metadata);
   } else {
@@ -66,7 +88,8 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
   const AovImages* layers = options.aovs && !aovs.albedo.pixels.empty() ? &aovs : nullptr;
   // The noisy render first: a denoiser that fails (a device plugin missing or broken, memory
   // exhausted at a large size) must not cost the finished render.
-  write_output(file, noisy, nullptr, layers, display, options.metadata);
+  const Image* coverage = options.alpha && !images.coverage.pixels.empty() ? &images.coverage : nullptr;
+  write_output(file, noisy, nullptr, layers, display, options.metadata, coverage);
   if (!options.denoise) return report;
   if (const auto why = denoising_unavailable()) {
     report.note = "denoising is unavailable (" + *why + "): the noisy image was written";
@@ -91,7 +114,7 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
     report.note = std::string("denoising failed (") + e.what() + "): " + file.string() + " holds the noisy image";
     return report;
   }
-  write_output(file, *denoised, &noisy, layers, display, options.metadata);
+  write_output(file, *denoised, &noisy, layers, display, options.metadata, coverage);
   report.denoised = true;
   return report;
 }
@@ -99,8 +122,9 @@ RenderOutputReport save_render_images(const RenderImages& images, const DisplayS
 RenderOutputReport save_render_output(GpuRenderer& renderer, const DisplaySettings& display,
                                       const std::filesystem::path& file,
                                       const RenderOutputOptions& options, Denoiser* denoiser) {
-  RenderImages images{render_colour(renderer), {}};
+  RenderImages images{render_colour(renderer), {}, {}};
   if (options.aovs || options.denoise) images.aovs = renderer.read_aovs();
+  if (options.alpha) images.coverage = renderer.read_coverage();
   return save_render_images(images, display, file, options, denoiser);
 }
 

@@ -1,7 +1,8 @@
 // Writing a finished render with the optional denoised colour and auxiliary images (docs/
 // DESIGN.md, Denoising): the one writer of final images, for `glint render` and the editor's
 // export alike. By the file's extension: .png the tonemapped image (tonemapped() below, on the
-// CPU), .hdr the linear radiance, .exr float32 layers; alpha is 1. Denoising is BIASED
+// CPU), .hdr the linear radiance, .exr float32 layers; alpha is 1, or with
+// RenderOutputOptions::alpha the coverage of a transparent background. Denoising is BIASED
 // (renderer/denoiser.h): the caller labels it so.
 #pragma once
 
@@ -30,6 +31,12 @@ struct RenderOutputOptions {
   // Written into the file: PNG text chunks, Radiance header lines, OpenEXR string attributes
   // (renderer/image_metadata.h; a render's provenance: renderer/render_metadata.h).
   ImageMetadata metadata;
+  // A transparent background (.png and .exr; the renderer must have traced with
+  // RenderOptions::transparent_background): alpha is each pixel's coverage
+  // (GpuRenderer::read_coverage), 0 where the camera sees the environment, fractional on
+  // antialiased edges. The EXR holds premultiplied RGBA (OpenEXR's convention, what the render
+  // is); the PNG straight alpha (its convention): the tonemap of colour / alpha.
+  bool alpha = false;
 };
 
 struct RenderOutputReport {
@@ -53,8 +60,15 @@ Image tonemapped(const Image& linear, const DisplaySettings& display);
 struct RenderImages {
   Image colour;    // linear, alpha 1
   AovImages aovs;  // empty when the renderer had no AOVs enabled
+  Image coverage;  // with `coverage` below (rgba alike), else empty
 };
-RenderImages read_render_images(const GpuRenderer& renderer);
+RenderImages read_render_images(const GpuRenderer& renderer, bool coverage = false);
+
+// `colour` with its alpha set to `coverage`'s (same size): premultiplied RGBA.
+Image with_alpha(const Image& colour, const Image& coverage);
+// The display image of a premultiplied one with straight alpha: tonemapped(colour / alpha),
+// 0 where alpha is 0, and alpha kept (a transparent PNG).
+Image tonemapped_straight_alpha(const Image& premultiplied, const DisplaySettings& display);
 
 // Writes `file` (atomically) from images already read back: needs no GL, so it may run on a
 // worker thread. Throws ImageError naming the file. A denoiser that fails leaves the noisy

@@ -100,6 +100,14 @@ struct Quad {
   bool operator==(const Quad&) const = default;
 };
 
+// A named camera bookmark (the editor's camera views): saved in the project, never rendered.
+struct CameraView {
+  std::string name;
+  Camera camera;
+
+  bool operator==(const CameraView&) const = default;
+};
+
 struct Scene {
   Camera camera;
   Film film;
@@ -110,6 +118,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Sphere> spheres;
   std::vector<Quad> quads;
+  std::vector<CameraView> views;  // in no digest: bookmarks never reset the render
 
   // Not part of the file: the folder that relative asset paths are resolved against
   // (the project file's folder; the current folder for a scene that was never saved).

@@ -94,7 +94,9 @@ uint64_t SceneDigests::radiance() const {
 SceneDigests digest_scene(const Scene& scene) {
   // Each part of the scene in one digest; the film is in none: GpuRenderer::sync is given the
   // size to render at (the film's or another) and restarts the accumulation on a new size.
-  static_assert(scene_part_count() == 9, "a new part of Scene needs its digest here");
+  // The camera views are in none: saving, renaming or deleting a bookmark never resets the
+  // render (recalling one changes scene.camera, which is).
+  static_assert(scene_part_count() == 10, "a new part of Scene needs its digest here");
   SceneDigests d;
   d.geometry = digest_of(scene, scene.spheres, scene.quads);
   d.materials = digest_of(scene, scene.materials);

@@ -197,6 +197,17 @@ struct FieldTable<Quad> {
   }
 };
 
+// A view's camera is an object of the Camera table (read, written and checked as `camera` is).
+template <>
+struct FieldTable<CameraView> {
+  static constexpr const char* noun = "view";
+  template <class V>
+  static constexpr void visit(V&& v) {
+    v(field("name", &CameraView::name, kRequired | kUniqueName | kLabel));
+    v(field("camera", &CameraView::camera, kRequired));
+  }
+};
+
 // The parts of a scene that the file holds, in file order: v(key, member of Scene) for each
 // (objects and lists). base_dir is not in the file.
 template <class V>
@@ -210,6 +221,7 @@ constexpr void visit_scene_parts(V&& v) {
   v("materials", &Scene::materials);
   v("spheres", &Scene::spheres);
   v("quads", &Scene::quads);
+  v("views", &Scene::views);  // optional: left out of the file when empty
 }
 
 template <class T>
@@ -224,6 +236,11 @@ constexpr size_t scene_part_count() {
   visit_scene_parts([&](const char*, auto) { ++n; });
   return n;
 }
+
+// A member that is an object of its own table (a view's camera), read, written and checked
+// with that table.
+template <class M>
+constexpr bool kNestedObject = std::is_same_v<M, Camera>;
 
 template <class T>
 struct IsVector : std::false_type {};
@@ -251,8 +268,8 @@ static_assert(texture_refs_are_the_slots(), "a texture slot of Material is missi
 // A struct's members, one name each: a new member makes the binding fail to compile. The count
 // beside each is that of its table.
 [[maybe_unused]] inline void every_member_is_listed(const Scene& s) {
-  [[maybe_unused]] const auto& [a, b, c, d, e, f, g, h, i, base_dir] = s;
-  static_assert(scene_part_count() == 9);
+  [[maybe_unused]] const auto& [a, b, c, d, e, f, g, h, i, j, base_dir] = s;
+  static_assert(scene_part_count() == 10);
   [[maybe_unused]] const auto& [c0, c1, c2, c3, c4, c5] = s.camera;
   static_assert(field_count<Camera>() == 6);
   [[maybe_unused]] const auto& [f0, f1] = s.film;
@@ -271,6 +288,8 @@ static_assert(texture_refs_are_the_slots(), "a texture slot of Material is missi
   static_assert(field_count<Sphere>() == 4);
   [[maybe_unused]] const auto& [q0, q1, q2, q3] = Quad{};
   static_assert(field_count<Quad>() == 4);
+  [[maybe_unused]] const auto& [v0, v1] = CameraView{};
+  static_assert(field_count<CameraView>() == 2);
 }
 
 }  // namespace glint

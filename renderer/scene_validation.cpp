@@ -98,17 +98,18 @@ bool all_finite(const glm::vec<N, float>& v) {
 }
 
 // The checks that involve more than one field, after the fields they involve.
-void check_camera_view(Checker& c, const Camera& cam) {
+// `path` is the camera's JSON path: "camera", or "views[2].camera" for a saved view.
+void check_camera_view(Checker& c, const std::string& path, const Camera& cam) {
   if (!all_finite(cam.position) || !all_finite(cam.target)) return;
   const glm::dvec3 view = glm::dvec3(cam.target) - glm::dvec3(cam.position);
   if (view == glm::dvec3(0)) {
-    c.add("camera.target", "must differ from camera.position");
+    c.add(child_path(path, "target"), "must differ from " + child_path(path, "position"));
   } else if (all_finite(cam.up)) {
     const glm::dvec3 u(cam.up);
     // |sin| of the angle between up and the view direction
     if (u == glm::dvec3(0) ||
         glm::length(glm::cross(glm::normalize(view), glm::normalize(u))) <= 1e-6)
-      c.add("camera.up", "must not be zero or parallel to the view direction");
+      c.add(child_path(path, "up"), "must not be zero or parallel to the view direction");
   }
 }
 
@@ -166,11 +167,13 @@ void check_object(Checker& c, const std::string& path, const T& object,
     } else if constexpr (std::is_same_v<M, std::array<glm::vec3, 4>>) {
       check_value(c, key_path, value, f.check);
       if constexpr (std::is_same_v<T, Quad>) check_quad_area(c, key_path, value);
+    } else if constexpr (kNestedObject<M>) {
+      check_object(c, key_path, value);
     } else {
       check_value(c, key_path, value, f.check);
     }
   });
-  if constexpr (std::is_same_v<T, Camera>) check_camera_view(c, object);
+  if constexpr (std::is_same_v<T, Camera>) check_camera_view(c, path, object);
 }
 
 template <class T>
@@ -185,6 +188,11 @@ std::string too_many_problem(size_t count, size_t limit, const char* what) {
   return "too many " + std::string(what) + ": " + std::to_string(count) + " (the limit is " +
          std::to_string(limit) + ", so that their GPU array fits the 128 MiB that OpenGL 4.5 "
          "guarantees for a shader storage block)";
+}
+
+std::string too_many_views_problem(size_t count) {
+  return "too many views: " + std::to_string(count) + " (the limit is " +
+         std::to_string(kMaxCameraViews) + ")";
 }
 
 std::string bytes_text(double bytes) {
@@ -217,7 +225,7 @@ std::optional<ProjectError> check_film_size(int64_t width, int64_t height) {
 std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
   // The parts in file order (scene_fields.h), but the list limits right after the film, as
   // the loader reports them before any element.
-  static_assert(scene_part_count() == 9, "a new part of Scene needs its checks here");
+  static_assert(scene_part_count() == 10, "a new part of Scene needs its checks here");
   Checker c(scene);
   check_object(c, "camera", scene.camera);
   if (const auto problem = check_film_size(scene.film.width, scene.film.height))
@@ -233,6 +241,8 @@ std::vector<ProjectError> validate_scene(const Scene& scene, bool check_files) {
   check_list(c, "materials", scene.materials);
   check_list(c, "spheres", scene.spheres);
   check_list(c, "quads", scene.quads);
+  if (scene.views.size() > kMaxCameraViews) c.add("views", too_many_views_problem(scene.views.size()));
+  check_list(c, "views", scene.views);
   for (ProjectError& problem : check_float_limits(scene)) c.problems.push_back(std::move(problem));
   if (check_files)
     for (ProjectError& problem : check_scene_images(scene)) c.problems.push_back(std::move(problem));

@@ -30,6 +30,8 @@ constexpr int64_t kMaxFilmPixels = int64_t(1) << 26;  // e.g. 8192 x 8192
 constexpr int kFilmBytesPerPixel = 4 * 16 + 4;
 constexpr size_t kMaxSpheres = size_t(1) << 20;
 constexpr size_t kMaxQuads = size_t(1) << 20;
+// Camera views (bookmarks) a project may hold: far more than anyone names by hand.
+constexpr size_t kMaxCameraViews = 1024;
 
 // Validates a scene as the loader would (used after edits through the UI or the API).
 // Returns the problems as ProjectErrors with an empty file name; empty when valid. The value
@@ -47,6 +49,9 @@ std::optional<ProjectError> check_film_size(int64_t width, int64_t height);
 
 // "too many spheres: 2000000 (the limit is 1048576, so that ...)": a list over its limit.
 std::string too_many_problem(size_t count, size_t limit, const char* what);
+
+// "too many views: 2000 (the limit is 1024)".
+std::string too_many_views_problem(size_t count);
 
 // "335.3 GiB", "512.0 MiB": memory sizes in messages.
 std::string bytes_text(double bytes);

@@ -41,6 +41,9 @@ GlProgram& bind_trace_draw(GlProgram& p, const TraceBindings& b, const AdaptiveU
   p.set("u_adaptive_min_samples", static_cast<unsigned>(std::max(2, adaptive.min_samples)));
   p.set("u_adaptive_every", static_cast<unsigned>(std::max(1, adaptive.every)));
   p.set("u_pass_index", static_cast<unsigned>(draw.pass_index));
+  p.set("u_region_on", adaptive.region_on ? 1 : 0);
+  p.set("u_region", adaptive.region);
+  p.set("u_per_pixel_counts", adaptive.per_pixel_counts ? 1 : 0);
   glUseProgram(p.id());
   b.tables.bind();
   glBindTextureUnit(1, b.textures.texels_8bit());

@@ -9,6 +9,7 @@
 #include <string>
 
 #include <epoxy/gl.h>
+#include <glm/glm.hpp>
 
 #include "renderer/trace_backend.h"
 
@@ -33,12 +34,18 @@ struct TraceBindings {
   WorkGroup work_group;
 };
 
-// Adaptive sampling's uniforms (RenderOptions::adaptive).
+// Which pixels a pass samples: adaptive sampling's uniforms (RenderOptions::adaptive) and the
+// region (GpuRenderer::set_sample_region).
 struct AdaptiveUniforms {
   bool enabled = false;
   float threshold = 0;  // the image's mean error per sample at the last estimate
   int min_samples = 16;
   int every = 8;
+  bool region_on = false;
+  glm::ivec4 region{0};  // x0, y0, x1, y1: pixels [x0, x1) x [y0, y1), image rows top first
+  // Pixels' sample counts may differ (a region was used since the reset): each continues from
+  // its own.
+  bool per_pixel_counts = false;
 };
 
 // One draw: adds `samples` samples to pixels that have `samples_before`, at adaptive sampling's

@@ -28,6 +28,7 @@ void set_frame_uniforms(TraceUniforms& u, const Scene& scene, const RenderOption
   u.env_select = env_lights ? (u.light_count > 0 ? 0.5f : 1.0f) : 0.0f;
   u.russian_roulette = options.russian_roulette ? 1 : 0;
   u.clamp = options.clamp;
+  u.transparent_background = options.transparent_background ? 1 : 0;
   u.restart_together = restart_paths_together(options.restart, env) ? 1 : 0;
   u.sobol = options.sampler == SamplerKind::sobol ? 1 : 0;
   u.seed = static_cast<unsigned>(scene.render.seed);
@@ -62,6 +63,7 @@ void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_env_distribution_size", u.env_distribution_size);
   p.set("u_russian_roulette", u.russian_roulette);
   p.set("u_clamp", u.clamp);
+  p.set("u_transparent_background", u.transparent_background);
   p.set("u_restart_together", u.restart_together);
   p.set("u_sobol", u.sobol);
   p.set("u_seed", u.seed);

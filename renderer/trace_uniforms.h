@@ -22,6 +22,7 @@ struct TraceUniforms {
   glm::ivec2 env_distribution_size{1, 1};  // set by the environment's upload
   int russian_roulette = 0;
   float clamp = 0;
+  int transparent_background = 0;
   int restart_together = 0;
   int sobol = 0;
   unsigned seed = 0;

@@ -37,11 +37,13 @@ void main() {
   bool before = u_samples_before > 0u;
   vec4 accumulation = before ? imageLoad(u_accumulation, pixel) : vec4(0.0);
   vec4 compensation = before ? imageLoad(u_compensation, pixel) : vec4(0.0);
-  vec3 variance = before ? imageLoad(u_variance, pixel).rgb : vec3(0.0);
+  vec4 variance_texel = before ? imageLoad(u_variance, pixel) : vec4(0.0);
+  vec3 variance = variance_texel.rgb;
+  float covered = variance_texel.a;
   vec3 variance_compensation = before ? imageLoad(u_variance_compensation, pixel).rgb : vec3(0.0);
-  add_samples(pixel, accumulation, compensation, variance, variance_compensation);
+  add_samples(pixel, accumulation, compensation, variance, variance_compensation, covered);
   imageStore(u_accumulation, pixel, accumulation);
   imageStore(u_compensation, pixel, compensation);
-  imageStore(u_variance, pixel, vec4(variance, 0.0));
+  imageStore(u_variance, pixel, vec4(variance, covered));
   imageStore(u_variance_compensation, pixel, vec4(variance_compensation, 0.0));
 }

@@ -29,11 +29,13 @@ void main() {
   bool before = u_samples_before > 0u;
   vec4 accumulation = before ? texelFetch(u_previous, pixel, 0) : vec4(0.0);
   vec4 compensation = before ? texelFetch(u_previous_compensation, pixel, 0) : vec4(0.0);
-  vec3 variance = before ? texelFetch(u_previous_variance, pixel, 0).rgb : vec3(0.0);
+  vec4 variance_texel = before ? texelFetch(u_previous_variance, pixel, 0) : vec4(0.0);
+  vec3 variance = variance_texel.rgb;
+  float covered = variance_texel.a;
   vec3 variance_compensation = before ? texelFetch(u_previous_variance_compensation, pixel, 0).rgb : vec3(0.0);
-  add_samples(pixel, accumulation, compensation, variance, variance_compensation);
+  add_samples(pixel, accumulation, compensation, variance, variance_compensation, covered);
   out_accumulation = accumulation;
   out_compensation = compensation;
-  out_variance = vec4(variance, 0.0);
+  out_variance = vec4(variance, covered);
   out_variance_compensation = vec4(variance_compensation, 0.0);
 }

@@ -11,6 +11,9 @@
 // squared deviation of the finite samples from their mean (M2 / n, Chan et al.'s pairwise
 // update), its compensation texel: rgb what float32 could not hold of it; a unused in both.
 // The error estimate (shaders/error_reduce.frag, docs/DESIGN.md §4.1) is computed from them.
+// The variance texel's a counts the finite samples whose camera ray hit a surface (not the
+// environment; seen through cut-outs counts as the environment): a / finite samples is the
+// pixel's coverage, the alpha of a transparent-background output (renderer/render_output.h).
 // Next-event estimation samples emitting shapes and an environment map; with neither there is
 // nothing to sample (u_light_count and u_env_select are 0) and its code is left out.
 #if defined(GLINT_NO_EMITTERS) && defined(GLINT_NO_ENV_TEXTURE)
@@ -161,6 +164,17 @@ uniform uint u_adaptive_min_samples;
 uniform uint u_adaptive_every;
 uniform uint u_pass_index;
 uniform float u_clamp;  // largest luminance of one sample; 0: off (biased when on)
+// Region render (GpuRenderer::set_sample_region): only pixels in [u_region.xy, u_region.zw)
+// take samples; the others keep their state. Their counts then differ, so once a region has
+// been used since the last reset each pixel continues from its own count (u_per_pixel_counts),
+// as with adaptive sampling.
+uniform bool u_region_on;
+uniform ivec4 u_region;
+uniform bool u_per_pixel_counts;
+// A transparent background (RenderOptions::transparent_background): a camera ray that finds
+// the environment adds nothing (the environment still lights the scene), so the mean is the
+// colour premultiplied by the coverage.
+uniform bool u_transparent_background;
 // Path regeneration's restart policy (add_samples): false, a lane whose path has ended starts
 // its next sample at once; true, it waits until no lane of its SIMD group has a path in flight,
 // so that the group starts its samples together (renderer/path_restart.h chooses).
@@ -301,6 +315,8 @@ BvhNode bvh_node(int i) {
 }
 int bvh_primitive(int i) { return table_texel(u_bvh_primitive_table, i).x; }
 
+// Set when this sample's camera ray found the environment (after any cut-outs it passed).
+bool g_primary_escaped;
 // Set when a BVH traversal of this sample stopped at its step cap: the sample is discarded
 // (counted with the non-finite ones) rather than added with a possibly wrong hit.
 bool g_incomplete;
@@ -601,7 +617,9 @@ bool continue_path(inout PathState path) {
       w = power_heuristic(path.last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
     }
 #endif
-    path.radiance += path.throughput * environment(ray.direction) * w;
+    if (path.bounces == 0) g_primary_escaped = true;
+    if (!(u_transparent_background && path.bounces == 0))
+      path.radiance += path.throughput * environment(ray.direction) * w;
     return false;
   }
   GpuMaterial gm = material_at(hit.material);
@@ -699,6 +717,7 @@ PathState start_sample(CameraFrame cam, ivec2 pixel, uint index) {
                                     : vec4(0.0, 0.0, sobol_sample_2d(g_sample_index, g_pixel_seed, 0u));
   }
   g_incomplete = false;
+  g_primary_escaped = false;
   vec2 jitter = sample_2d(0u);
   vec2 film = (vec2(float(pixel.x), float(pixel.y)) + jitter) / vec2(u_resolution);
   vec2 lens = sample_2d(1u);
@@ -709,11 +728,17 @@ PathState start_sample(CameraFrame cam, ivec2 pixel, uint index) {
 // (rgb the mean, a the discarded count), `compensation` (what float32 could not hold of the
 // mean; a the samples taken), `variance` and `variance_compensation` (the same for the mean
 // squared deviation) hold the pixel's state before the pass (zero before the first) and
-// receive it after. The two entry points (trace.frag, trace.comp) differ only in where they
-// read and write it. With adaptive sampling a waiting pixel keeps its state.
+// receive it after; `covered` counts the finite samples whose camera ray hit a surface. The
+// two entry points (trace.frag, trace.comp) differ only in where they read and write it. A
+// pixel outside the region, or waiting with adaptive sampling, keeps its state.
+bool in_sample_region(ivec2 pixel) {
+  return !u_region_on || (all(greaterThanEqual(pixel, u_region.xy)) && all(lessThan(pixel, u_region.zw)));
+}
+
 void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
-                 inout vec3 variance, inout vec3 variance_compensation) {
+                 inout vec3 variance, inout vec3 variance_compensation, inout float covered) {
   if (u_read_every_sampler) accumulation += every_sampler();
+  if (!in_sample_region(pixel)) return;
   if (!adaptive_pixel_active(accumulation, compensation, variance)) return;
   CameraFrame cam = CameraFrame(u_cam_origin, u_cam_right, u_cam_up, u_cam_forward,
                                 u_cam_tan_half_vfov, u_cam_aspect, u_cam_aperture, u_cam_focus);
@@ -721,7 +746,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   vec4 previous = accumulation;
   // Without adaptive sampling every pixel has taken u_samples_before samples; with it, its own
   // count, so that its sample indices (and its Sobol' points) continue without a gap.
-  uint samples_before = u_adaptive ? uint(compensation.a) : u_samples_before;
+  uint samples_before = u_adaptive || u_per_pixel_counts ? uint(compensation.a) : u_samples_before;
   // The pass adds the sum of the samples' deviations from the previous mean, not their sum:
   // mean += sum(l - mean) / n. The deviations are small (exactly 0 for a constant once the mean
   // has reached it), so their rounding is small too; summing the samples themselves and
@@ -738,6 +763,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   vec3 shifted_sum = vec3(0.0);
   vec3 shifted_square_sum = vec3(0.0);
   int finite_count = 0;
+  int covered_count = 0;
   // Path regeneration: one loop over the pass's bounces, in which a lane whose path has ended
   // starts its next sample. A SIMD group (8 lanes on llvmpipe) runs each iteration while any
   // lane is active, so with a loop per sample every sample would cost the longest path of the
@@ -771,6 +797,7 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
       shifted_sum += l - shift;
       shifted_square_sum += (l - shift) * (l - shift);
       ++finite_count;
+      if (!g_primary_escaped) ++covered_count;
     }
     if (++s < u_samples_per_pass) {
       path = start_sample(cam, pixel, samples_before + uint(s));
@@ -816,4 +843,5 @@ void add_samples(ivec2 pixel, inout vec4 accumulation, inout vec4 compensation,
   compensation = vec4(lost, taken);
   variance = v;
   variance_compensation = v_lost;
+  covered += float(covered_count);
 }

@@ -164,7 +164,7 @@ TEST(MalformedInput, ProjectsFailWithFileJsonPathAndProblem) {
        "textures[0]: expected an object, got number 5"},
       {"unknown top-level key", [] { return edit("\"film\"", "\"flim\""); },
        "flim: unknown key (expected one of: format, version, camera, film, render, display, "
-       "environment, textures, materials, spheres, quads)"},
+       "environment, textures, materials, spheres, quads, views)"},
       {"unknown nested key", [] { return edit("\"radius\"", "\"raduis\""); },
        "spheres[0].raduis: unknown key (expected one of: name, center, radius, material)"},
       // NaN and infinities: as strings (JSON has neither), or as literals beyond a double.

@@ -26,11 +26,13 @@ Scene sample_scene() {
   s.spheres = {{.name = "a", .center = {0, 0, 0}, .radius = 1, .material = "m"}};
   s.quads = {{.name = "q", .material = "m",
               .corners = {glm::vec3{0, 0, 0}, glm::vec3{0, 1, 0}, glm::vec3{1, 0, 0}, glm::vec3{1, 1, 0}}}};
+  s.views = {{.name = "front", .camera = {}}, {.name = "side", .camera = {.position = {5, 1, 0}}}};
   return s;
 }
 
 // The digest that a change of the part under `key` must change, as scene_digest.h documents
-// it; nullptr for the film (the renderer compares its size itself).
+// it; nullptr for the film (the renderer compares its size itself) and the camera views
+// (bookmarks: in no digest, so saving, renaming or deleting one never restarts the render).
 uint64_t SceneDigests::*digest_of_part(const std::string& key) {
   if (key == "camera") return &SceneDigests::camera;
   if (key == "render") return &SceneDigests::settings;
@@ -75,6 +77,12 @@ std::vector<M> other_values(const M& v, unsigned flags, const Scene& s) {
       out = {v.empty() ? "sky.hdr" : "other_" + v};
     } else {
       out = {v + "2"};
+    }
+  } else if constexpr (std::is_same_v<M, Camera>) {  // a view's camera: moved sideways
+    for (float d : {0.25f, -0.25f}) {
+      M changed = v;
+      changed.position.x += d;
+      out.push_back(changed);
     }
   } else {  // arrays of points: the last point moved (the quad keeps its area)
     for (float d : {0.25f, -0.25f}) {
@@ -125,7 +133,8 @@ size_t for_each_field_changed(Fn&& fn) {
 constexpr size_t kFields = field_count<Camera>() + field_count<Film>() +
                            field_count<RenderSettings>() + field_count<DisplaySettings>() +
                            field_count<Environment>() + field_count<Texture>() +
-                           field_count<Material>() + field_count<Sphere>() + field_count<Quad>();
+                           field_count<Material>() + field_count<Sphere>() + field_count<Quad>() +
+                           field_count<CameraView>();
 
 TEST(SceneFields, EveryFieldChangesTheDigestItBelongsTo) {
   const SceneDigests before = digest_scene(sample_scene());
