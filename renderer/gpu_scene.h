@@ -1,5 +1,5 @@
-// The scene packed into the std430 layouts of shaders/trace_common.glsl (CPU side, no GL; the
-// shader reads them from integer textures, 16 bytes a texel), and the
+// The scene packed into the std430 layouts of shaders/lib/trace_scene_tables.glsl (CPU side,
+// no GL; the shader reads them from integer textures, 16 bytes a texel), and the
 // assignment of texture layers. One layer per (texture, encoding) pair in use: a texture used
 // both as colour (sRGB) and as roughness (linear) has two layers over the same texels.
 #pragma once

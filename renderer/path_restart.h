@@ -1,5 +1,5 @@
 // When a lane of the trace shader's path regeneration starts its next sample
-// (shaders/trace_common.glsl, add_samples): at once, or together with its SIMD group once no
+// (shaders/lib/sample_accumulation.glsl, add_samples): at once, or together with its SIMD group once no
 // lane of the group has a path in flight. Both give the same image (each sample is the same,
 // added in the same order); only the speed differs, and which is faster depends on the scene.
 //

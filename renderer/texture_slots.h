@@ -3,7 +3,7 @@
 // scene (gpu_scene.cpp), the editor's properties panel and its texture edits (deleting or
 // renaming a texture clears or renames every slot that names it) walk this table.
 //
-// Table order is the order of GpuMaterial::layers (shaders/trace_common.glsl: x colour,
+// Table order is the order of GpuMaterial::layers (shaders/lib/trace_scene_tables.glsl: x colour,
 // y emission, z roughness). A texture slot added to Material and to its field table
 // (scene_fields.h, flagged kTextureRef) fails to compile there until it is listed here.
 #pragma once

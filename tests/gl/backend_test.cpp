@@ -22,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Both run the same function (shaders/trace_common.glsl, add_samples) on the same random
+// Both run the same function (shaders/lib/sample_accumulation.glsl, add_samples) on the same random
 // numbers, compiled by the same driver from the same source except for the entry point, so the
 // images agree to rounding: a compiler may contract or reorder a few float operations
 // differently in the two programs. A rounding difference can in principle flip a branch (a ray

@@ -28,7 +28,7 @@ TEST(GpuScene, PacksOneLayerPerTextureAndEncoding) {
 }
 
 // Each texture slot (renderer/texture_slots.h) fills the component of GpuMaterial::layers that
-// shaders/trace_common.glsl reads it from (x colour, y emission, z roughness), decoded as the
+// shaders/lib/trace_scene_tables.glsl reads it from (x colour, y emission, z roughness), decoded as the
 // shader expects (colour and emission sRGB, roughness linear).
 TEST(GpuScene, EachTextureSlotFillsTheLayerTheShaderReadsItFrom) {
   struct Expected {

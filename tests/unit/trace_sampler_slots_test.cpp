@@ -1,7 +1,7 @@
 // The sampler layout that keeps llvmpipe's compiled trace shaders independent of what other
-// programs left in the sampler slots (shaders/trace_common.glsl, "The samplers, in a fixed
-// order"): checked on the shader sources, since breaking it shows only as an editor frame that
-// waits for a compile (gl.GlProgramWorker.NoFrameWaitsForAStructuralEditsProgram).
+// programs left in the sampler slots (shaders/lib/trace_scene_tables.glsl, "The samplers, in a
+// fixed order"): checked on the shader sources, since breaking it shows only as an editor
+// frame that waits for a compile (gl.GlProgramWorker.NoFrameWaitsForAStructuralEditsProgram).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -37,7 +37,7 @@ std::vector<SamplerDeclaration> sampler_declarations(const std::string& source) 
 // Every sampler of the library is read in every_sampler(), and the buffer textures come after
 // every 2-D sampler.
 TEST(TraceSamplerSlots, EverySamplerIsReadAndBufferTexturesComeLast) {
-  const std::string common = shader_source("trace_common.glsl");
+  const std::string common = shader_source("lib/trace_scene_tables.glsl");
   const std::vector<SamplerDeclaration> samplers = sampler_declarations(common);
   ASSERT_GE(samplers.size(), 11u) << "the environment, two texel textures, eight tables";
   const size_t body = common.find("vec4 every_sampler() {");
