@@ -143,7 +143,7 @@ void Document::end_frame(bool interacting, bool navigated) {
 
 void Document::separate_next_step() {
   end_frame(false);
-  last_step_camera_only_ = false;
+  pending_navigation_ = last_step_navigation_ = false;
 }
 
 void Document::undo() {

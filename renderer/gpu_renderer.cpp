@@ -284,7 +284,7 @@ GLuint GpuRenderer::error_map() {
 }
 
 Image GpuRenderer::read_coverage() const {
-  return samples_ > 0 ? film_.read_coverage() : zero_image(film_.width(), film_.height());
+  return samples_ > 0 ? film_.read_coverage() : Image::filled(film_.width(), film_.height(), 0.0f);
 }
 
 Image GpuRenderer::read_display() {
