@@ -114,13 +114,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
                                                : std::max(budget_.frame_trace_seconds(), budget_.config().idle_trace_seconds);
     if (k > 0) trace_slice(k, slice, int64_t(full_w) * full_h);
   }
-  // Samples per pixel per second of wall-clock time, over half-second windows.
-  if (rate_start_.time_since_epoch().count() == 0) rate_start_ = now;
-  if (double span = seconds_since(rate_start_); span >= 0.5) {
-    spp_rate_ = rate_samples_ / span;
-    rate_samples_ = 0;
-    rate_start_ = std::chrono::steady_clock::now();
-  }
+  rate_.update(seconds_since(start_));  // samples per pixel per second (editor/sample_rate.h)
   // A pass traced in bands is read only once it ends; meanwhile the last image stays.
   const bool mid_pass = renderer_.pass_under_way();
   if (!mid_pass) renderer_.update_display();
@@ -145,7 +139,7 @@ ViewportFrame ViewportRenderer::render(const Scene& scene, const ViewportRequest
   if (request.error_map && synced) out.error_map_texture = renderer_.error_map();
   stats.spp = renderer_.sample_count();
   stats.estimated_relmse = estimated_relmse_;
-  stats.spp_per_second = spp_rate_;
+  stats.spp_per_second = rate_.per_second;
   stats.ms_per_frame = ms_per_frame_;
   stats.trace_width = renderer_.width();
   stats.trace_height = renderer_.height();
@@ -172,7 +166,7 @@ void ViewportRenderer::trace_slice(int samples, double slice_seconds, int64_t fu
       const double seconds = seconds_since(t0);
       last_trace_seconds_ += seconds;
       budget_.record(samples, pixels, seconds, full_pixels);
-      rate_samples_ += samples;
+      rate_.add(samples);
       return;
     }
     renderer_.begin_pass(1);
@@ -191,7 +185,7 @@ void ViewportRenderer::trace_slice(int samples, double slice_seconds, int64_t fu
     // The pass as a whole: each band's own fixed cost (draw set-up, the wait) is part of it,
     // and a band's few rows alone would overstate the cost per sample many times over.
     budget_.record(pass_samples, pixels, pass_seconds_, full_pixels);
-    rate_samples_ += pass_samples;
+    rate_.add(pass_samples);
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "editor/frame_budget.h"
 #include "editor/held_image.h"
+#include "editor/sample_rate.h"
 #include "editor/viewport_denoiser.h"
 #include "editor/viewport_frame.h"
 #include "renderer/gpu_renderer.h"
@@ -60,9 +61,7 @@ class ViewportRenderer {
   std::string gl_renderer_;
   double ms_per_frame_ = 0;  // smoothed
   std::chrono::steady_clock::time_point last_frame_{};
-  std::chrono::steady_clock::time_point rate_start_{};
-  int64_t rate_samples_ = 0;
-  double spp_rate_ = 0;
+  SampleRate rate_;
   double last_trace_seconds_ = 0;
   double pass_seconds_ = 0;  // the bands of the pass under way so far
   std::chrono::steady_clock::time_point last_estimate_{};

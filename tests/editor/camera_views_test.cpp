@@ -47,9 +47,9 @@ TEST(CameraViews, RecallIsOneUndoStepAfterCameraMoves) {
   save_view(doc.scene, "Start");
   doc.end_frame(false);
   orbit(doc.scene.camera, 0.3f, 0);
-  doc.end_frame(false);
+  doc.end_frame(false, true);
   orbit(doc.scene.camera, 0.3f, 0);
-  doc.end_frame(false);  // one camera run of two moves
+  doc.end_frame(false, true);  // one navigation run of two orbits
   const Camera moved = doc.scene.camera;
   ASSERT_TRUE(recall_view(doc, 0));
   doc.end_frame(false);
