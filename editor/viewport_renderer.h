@@ -44,6 +44,8 @@ class ViewportRenderer {
   // Seconds another renderer traced in this frame (a running export's slice): the frame budget
   // counts them as tracing, not as the UI's own time, which would shrink the next slices.
   void add_trace_seconds(double seconds) { last_trace_seconds_ += seconds; }
+  // The seconds this frame spent tracing (after render()).
+  double traced_seconds() const { return last_trace_seconds_; }
 
   GpuRenderer& renderer() { return renderer_; }
   FrameBudget& budget() { return budget_; }

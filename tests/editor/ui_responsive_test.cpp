@@ -40,11 +40,11 @@ TEST_F(UiTest, LongPassesAreTracedInBandsBetweenFrames) {
   state_.viewport.resolution = ViewportResolution::full;
   mouse_to(ImVec2(-1, -1));  // idle
   FrameBudgetConfig c = viewport_->budget().config();
-  c.idle_trace_seconds = 0.002;
+  c.idle_trace_seconds = 0.0005;
   viewport_->budget().set_config(c);
   const FrameStats& s = state_.viewport.frame.stats;
   for (int i = 0; i < 400 && s.spp < 2; ++i) frame();  // learns the cost of a pass
-  ASSERT_GE(s.spp, 2);
+  ASSERT_GE(s.spp, 2) << s.trace_width << "x" << s.trace_height << " " << status_text();
   const int64_t pixels = int64_t(s.trace_width) * s.trace_height;
   const double pass = viewport_->budget().pass_seconds(pixels);
   ASSERT_GT(pass, 8 * c.idle_trace_seconds) << "a pass here fits a frame: nothing to slice";
@@ -52,7 +52,8 @@ TEST_F(UiTest, LongPassesAreTracedInBandsBetweenFrames) {
   std::vector<double> frame_seconds;
   int banded = 0;
   for (int i = 0; i < 400 && s.spp < start + 2; ++i) {
-    frame_seconds.push_back(seconds_of([&] { frame(); }));
+    frame();
+    frame_seconds.push_back(viewport_->traced_seconds());
     if (s.pass_progress > 0 && s.pass_progress < 1) ++banded;
     if (s.pass_progress > 0) {
       EXPECT_NE(status_text().find("(pass "), std::string::npos) << status_text();
@@ -60,11 +61,15 @@ TEST_F(UiTest, LongPassesAreTracedInBandsBetweenFrames) {
   }
   EXPECT_GE(s.spp, start + 2);
   EXPECT_GE(banded, 3);
+  // Each frame traces a band, a fraction of the pass: the median frame's tracing is well under
+  // a whole pass's (the sum over the frames of the two passes, halved). The UI's own cost, which
+  // on llvmpipe can match a small pass, is not counted.
+  double traced = 0;
+  for (double f : frame_seconds) traced += f;
+  const double per_pass = traced / double(s.spp - start);
   std::sort(frame_seconds.begin(), frame_seconds.end());
   const double median = frame_seconds[frame_seconds.size() / 2];
-  // The frames of a banded pass are a fraction of the pass (UI and read-backs on top; loose, as
-  // the machine may be busy).
-  EXPECT_LT(median, 0.8 * pass) << "pass " << pass << " s";
+  EXPECT_LT(median, 0.5 * per_pass) << "a whole pass traced " << per_pass << " s";
 }
 
 // A native file dialog blocks its thread, not the editor's: the viewport keeps accumulating
