@@ -605,8 +605,9 @@ TEST_F(UiUsabilityTest, AutoPreviewClicksThatEditNothingDoNotRestart) {
   const int ball = visible_sphere();
   ASSERT_GE(ball, 0);
   const ImVec2 targets[] = {screen(doc_.scene.spheres[ball].center),  // selects
-                            // the sky, clear of the dock splitters and of the gizmo's buttons (top left)
-                            ImVec2(state_.viewport.pos.x + state_.viewport.size.x - 15, state_.viewport.pos.y + 15)};
+                            // the sky, clear of the dock splitters, of the gizmo's buttons (top left)
+                            // and of the region and error-map buttons (top right)
+                            ImVec2(state_.viewport.pos.x + state_.viewport.size.x - 15, state_.viewport.pos.y + 60)};
   int64_t last = stats().spp;
   for (ImVec2 target : targets)
     for (int step = 0; step < 3; ++step) {
