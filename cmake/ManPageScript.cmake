@@ -1,5 +1,5 @@
-# Writes OUT, glint(1) in troff, from what GLINT prints for `--help` and for `render --help`,
-# `merge --help` and `farm --help`: the manual page is that text, so the two cannot drift. The
+# Writes OUT, glint(1) in troff, from what GLINT prints for `--help` and for the `--help` of
+# render, merge, farm and convert: the manual page is that text, so the two cannot drift. The
 # first line of `glint --help` ("glint: WHAT") is the page's NAME. VERSION is the footer.
 # The text is set verbatim (.nf) with troff's special characters escaped.
 function(run_help out_var)
@@ -36,7 +36,7 @@ set(page ".\\\" Generated from `glint --help` and its commands' --help by cmake/
 glint \\- ${what}
 .SH SYNOPSIS
 ${page_main}")
-foreach(command render merge farm)
+foreach(command render merge farm convert)
   run_help(text ${command})
   troff_verbatim(body "${text}")
   string(TOUPPER "${command}" title)
@@ -45,7 +45,7 @@ endforeach()
 string(APPEND page ".SH FILES
 .TP
 .I PREFIX/share/glint/projects/
-the example projects (the editor's number keys 1\\-4 open some of them)
+the example projects (the editor's File > Examples opens them as untitled copies)
 .TP
 .I PREFIX/lib/glint/
 Intel Open Image Denoise, which \\-\\-denoise loads
