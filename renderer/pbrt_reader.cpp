@@ -313,8 +313,11 @@ class PbrtReader {
 
   void film(const std::string& type, const Params& ps) {
     if (type != "rgb" && type != "gbuffer" && type != "spectral") warn("read as Glint's film (linear RGB)");
-    scene_.film.width = int(ps.number("xresolution", 1280));
-    scene_.film.height = int(ps.number("yresolution", 720));
+    // Checked before the conversion: a double outside int's range is undefined behaviour.
+    const double w = ps.number("xresolution", 1280), h = ps.number("yresolution", 720);
+    if (!(w >= 1 && w <= 1e6 && h >= 1 && h <= 1e6)) fail("film resolution must be between 1 and 10^6 pixels");
+    scene_.film.width = int(w);
+    scene_.film.height = int(h);
     ps.find("filename");
     ps.find("savefp16");
     finish(ps);
