@@ -83,23 +83,8 @@ void step_export(EditorState& state, double slice_seconds) {
   }
 }
 
-void draw_export_dialog(Document& doc, EditorState& state) {
-  if (!state.export_ui.show) return;
-  ExportSettings& s = state.export_ui.settings;
-  if (s.output.empty()) s = default_export_settings(doc, state);
-  // Auto-sized: the settings, the progress with its ETA, Cancel and the result always show
-  // without scrolling.
-  ImGui::SetNextWindowSizeConstraints(ImVec2(ui_units(520), 0), ImVec2(FLT_MAX, FLT_MAX));
-  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
-                          ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  if (!ImGui::Begin("Export render", &state.export_ui.show,
-                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
-    ImGui::End();
-    return;
-  }
-  const bool running = export_running(state);
-  ImGui::BeginDisabled(running);
-  ImGui::PushItemWidth(-ui_units(130));
+// Size: typed, the film's, or the viewport's aspect (which also frames its margins).
+static void draw_export_size(ExportSettings& s, const Document& doc, const EditorState& state) {
   int size[2] = {s.width, s.height};
   if (ImGui::InputInt2("Size (pixels)", size)) {
     s.width = std::clamp(size[0], 1, 16384);
@@ -120,6 +105,10 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   else if (int64_t(s.width) * doc.scene.film.height != int64_t(s.height) * doc.scene.film.width)
     ImGui::TextColored(ImVec4(1, 0.8f, 0.4f, 1), "Not the film's aspect (%dx%d): the viewport's frame shows the film.",
                        doc.scene.film.width, doc.scene.film.height);
+}
+
+// When it stops: after a number of samples per pixel or after a time.
+static void draw_export_budget(ExportSettings& s) {
   int budget = s.use_time ? 1 : 0;
   ImGui::RadioButton("Samples", &budget, 0);
   tip("Stop after a number of samples per pixel.");
@@ -137,6 +126,10 @@ void draw_export_dialog(Document& doc, EditorState& state) {
     if (ImGui::InputInt("Samples/pixel", &spp)) s.samples = std::max(1, spp);
     tip("Samples per pixel: the noise (standard deviation) falls as one over its square root.");
   }
+}
+
+// The file, its format (the extension) and what goes into it.
+static void draw_export_output(ExportSettings& s, Document& doc, EditorState& state) {
   char path[1024];
   std::snprintf(path, sizeof path, "%s", s.output.string().c_str());
   if (ImGui::InputText("Output file", path, sizeof path)) s.output = path;
@@ -155,55 +148,85 @@ void draw_export_dialog(Document& doc, EditorState& state) {
   ImGui::Checkbox("Transparent background (PNG, EXR)", &s.alpha);
   tip("Alpha is each pixel's coverage: 0 where the environment shows, fractional on edges,\n"
       "for compositing (the environment still lights the scene; EXR premultiplied).");
+}
+
+// A running export: time left, progress (samples and seconds so far) and Cancel.
+static void draw_export_progress(EditorState& state) {
+  ExportJob& job = *state.export_ui.job;
+  ExportUi& ui = state.export_ui;
+  // The time left above the bar: the bar's hover help opens below it.
+  ImGui::TextUnformatted(export_eta(job.progress(), job.wall_seconds()).c_str());
+  ui.time_left_min = ImGui::GetItemRectMin();
+  ui.time_left_max = ImGui::GetItemRectMax();
+  char overlay[96];
+  std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
+                static_cast<long long>(job.samples()), job.wall_seconds());
+  ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
+  ui.progress_min = ImGui::GetItemRectMin();
+  ui.progress_max = ImGui::GetItemRectMax();
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetNextWindowPos(ImVec2(ui.progress_min.x, ui.progress_max.y + ImGui::GetStyle().ItemSpacing.y));
+    ImGui::SetTooltip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
+  }
+  if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
+    job.cancel();
+    ui.message = "Export cancelled";
+  }
+  tip("Stop the export.");
+}
+
+// Render (disabled while the settings have a problem) and the last export's result.
+static void draw_export_start(Document& doc, EditorState& state, const std::string& problem) {
+  ExportSettings& s = state.export_ui.settings;
+  ImGui::BeginDisabled(!problem.empty());
+  if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
+    try {
+      s.estimator = state.viewport.estimator;
+      state.export_ui.job =
+          std::make_unique<ExportJob>(export_scene(doc.scene, s), s, state.shader_worker, state.trace_backend);
+      state.export_ui.message.clear();
+      const std::filesystem::path folder = std::filesystem::absolute(s.output).parent_path();
+      if (state.settings.export_dir != folder) {  // remembered for the next session
+        state.settings.export_dir = folder;
+        settings_changed(state);
+      }
+    } catch (const std::exception& e) {
+      show_error(state, std::string("Cannot export: ") + e.what());
+    }
+  }
+  tip("Render the scene with these settings and write the file (the viewport pauses meanwhile).");
+  ImGui::EndDisabled();
+  if (!state.export_ui.message.empty()) ImGui::TextWrapped("%s", state.export_ui.message.c_str());
+}
+
+void draw_export_dialog(Document& doc, EditorState& state) {
+  if (!state.export_ui.show) return;
+  ExportSettings& s = state.export_ui.settings;
+  if (s.output.empty()) s = default_export_settings(doc, state);
+  // Auto-sized: the settings, the progress with its ETA, Cancel and the result always show
+  // without scrolling.
+  ImGui::SetNextWindowSizeConstraints(ImVec2(ui_units(520), 0), ImVec2(FLT_MAX, FLT_MAX));
+  ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x * 0.5f, ImGui::GetIO().DisplaySize.y * 0.35f),
+                          ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  if (!ImGui::Begin("Export render", &state.export_ui.show,
+                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::End();
+    return;
+  }
+  const bool running = export_running(state);
+  ImGui::BeginDisabled(running);
+  ImGui::PushItemWidth(-ui_units(130));
+  draw_export_size(s, doc, state);
+  draw_export_budget(s);
+  draw_export_output(s, doc, state);
   ImGui::PopItemWidth();
   ImGui::EndDisabled();
 
-  std::string problem = validate_export_settings(s);
+  const std::string problem = validate_export_settings(s);
   if (!problem.empty() && !running) ImGui::TextColored(ImVec4(1, 0.5f, 0.4f, 1), "%s", problem.c_str());
   ImGui::Separator();
-  if (running) {
-    ExportJob& job = *state.export_ui.job;
-    ExportUi& ui = state.export_ui;
-    // The time left above the bar: the bar's hover help opens below it.
-    ImGui::TextUnformatted(export_eta(job.progress(), job.wall_seconds()).c_str());
-    ui.time_left_min = ImGui::GetItemRectMin();
-    ui.time_left_max = ImGui::GetItemRectMax();
-    char overlay[96];
-    std::snprintf(overlay, sizeof overlay, "%.0f%%: %lld spp, %.1f s", job.progress() * 100,
-                  static_cast<long long>(job.samples()), job.wall_seconds());
-    ImGui::ProgressBar(job.progress(), ImVec2(-1, 0), overlay);
-    ui.progress_min = ImGui::GetItemRectMin();
-    ui.progress_max = ImGui::GetItemRectMax();
-    if (ImGui::IsItemHovered()) {
-      ImGui::SetNextWindowPos(ImVec2(ui.progress_min.x, ui.progress_max.y + ImGui::GetStyle().ItemSpacing.y));
-      ImGui::SetTooltip("Done so far: samples per pixel and seconds; the viewport pauses while it runs.");
-    }
-    if (ImGui::Button("Cancel", ImVec2(ui_units(120), 0))) {
-      job.cancel();
-      state.export_ui.message = "Export cancelled";
-    }
-    tip("Stop the export.");
-  } else {
-    ImGui::BeginDisabled(!problem.empty());
-    if (ImGui::Button("Render", ImVec2(ui_units(120), 0))) {
-      try {
-        s.estimator = state.viewport.estimator;
-        state.export_ui.job =
-            std::make_unique<ExportJob>(export_scene(doc.scene, s), s, state.shader_worker, state.trace_backend);
-        state.export_ui.message.clear();
-        const std::filesystem::path folder = std::filesystem::absolute(s.output).parent_path();
-        if (state.settings.export_dir != folder) {  // remembered for the next session
-          state.settings.export_dir = folder;
-          settings_changed(state);
-        }
-      } catch (const std::exception& e) {
-        show_error(state, std::string("Cannot export: ") + e.what());
-      }
-    }
-    tip("Render the scene with these settings and write the file (the viewport pauses meanwhile).");
-    ImGui::EndDisabled();
-    if (!state.export_ui.message.empty()) ImGui::TextWrapped("%s", state.export_ui.message.c_str());
-  }
+  if (running) draw_export_progress(state);
+  else draw_export_start(doc, state, problem);
   ImGui::End();
 }
 

@@ -84,6 +84,73 @@ void click_viewport(Document& doc, EditorState& state, glm::vec2 film, bool focu
   doc.selection = hit ? hit->what : Selection{};
 }
 
+// A gizmo drag or a camera gesture under way: move, orbit, pan; a click without a drag selects
+// (or focuses); the wheel dollies.
+static void continue_viewport_gesture(Document& doc, EditorState& state, ImVec2 origin, ImVec2 size,
+                                      bool hovered, bool focusing) {
+  ImGuiIO& io = ImGui::GetIO();
+  ViewportTools& tools = state.tools;
+  if (tools.gizmo_handle >= 0) {
+    if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && update_gizmo_drag(doc, tools, io.MousePos))
+      tools.interacting = true;
+    else
+      tools.gizmo_handle = -1;
+  } else if (tools.camera_button >= 0) {
+    int b = tools.camera_button;
+    if (ImGui::IsMouseDown(b)) {
+      ImVec2 d = io.MouseDelta;
+      float moved = std::hypot(io.MousePos.x - tools.press_pos.x, io.MousePos.y - tools.press_pos.y);
+      if (moved > 3) tools.camera_moved = true;
+      if (tools.camera_moved && (d.x != 0 || d.y != 0)) {
+        Camera& cam = doc.scene.camera;
+        bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
+        // Orbit as in Blender, as if the scene were grabbed: a drag right turns it right, a drag
+        // up tilts its near side up (the camera goes down); View > Invert vertical orbit flips that.
+        if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
+        else orbit(cam, -d.x * 0.008f, d.y * 0.008f * (state.settings.invert_vertical_orbit ? -1 : 1));
+        tools.navigated = true;
+      }
+      if (tools.camera_moved) tools.interacting = true;
+    } else {
+      if (b == ImGuiMouseButton_Left && !tools.camera_moved) {
+        glm::vec2 film{(tools.press_pos.x - origin.x) / size.x, (tools.press_pos.y - origin.y) / size.y};
+        click_viewport(doc, state, film, focusing);
+      }
+      tools.camera_button = -1;
+    }
+  }
+  if (hovered && io.MouseWheel != 0) {
+    dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
+    tools.navigated = true;
+  }
+
+}
+
+// The selection's outline, the gizmo and the active tool's hint, and whether the user is busy
+// (the viewport then traces a fluid preview).
+static void draw_viewport_overlays(Document& doc, EditorState& state, ImVec2 origin, ImVec2 size) {
+  ImGuiIO& io = ImGui::GetIO();
+  ViewportTools& tools = state.tools;
+  // The image goes under this window once the viewport has rendered (show_viewport_image),
+  // with the film frame and the selection's outline, which are drawn there too.
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  ImVec2 end(origin.x + size.x, origin.y + size.y);
+  state.viewport.film = doc.scene.film;
+  state.viewport.outline.clear();
+  for (glm::vec2 p : selection_outline(doc.scene, doc.selection, {size.x, size.y}))
+    state.viewport.outline.push_back(ImVec2(origin.x + p.x, origin.y + p.y));
+  state.viewport.user_active = ImGui::IsAnyItemActive() || tools.interacting || io.MouseWheel != 0 ||
+                               io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || ImGui::IsAnyMouseDown();
+  const GizmoHandles gizmo = make_gizmo(doc, tools.gizmo_mode, origin, size);  // where the object is now
+  draw_gizmo(gizmo, tools.gizmo_mode, tools.gizmo_hover, tools.gizmo_handle);
+  const char* hint = nullptr;
+  if (tools.region_tool) hint = "Region: drag a rectangle to render only there (Ctrl+Alt+B clears)";
+  else if (tools.focus_tool) hint = "Focus tool: click a surface";
+  else if (tools.gizmo_mode == GizmoMode::rotate && doc.selection.kind == SelectionKind::sphere)
+    hint = "Rotate: a sphere looks the same turned (select a quad)";
+  if (hint) dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255), hint);
+}
+
 void draw_viewport(Document& doc, EditorState& state) {
   ImGuiIO& io = ImGui::GetIO();
   // A dockable window without a background (the image goes under it, show_viewport_image);
@@ -138,58 +205,8 @@ void draw_viewport(Document& doc, EditorState& state) {
       }
   }
 
-  if (tools.gizmo_handle >= 0) {
-    if (ImGui::IsMouseDown(ImGuiMouseButton_Left) && update_gizmo_drag(doc, tools, io.MousePos))
-      tools.interacting = true;
-    else
-      tools.gizmo_handle = -1;
-  } else if (tools.camera_button >= 0) {
-    int b = tools.camera_button;
-    if (ImGui::IsMouseDown(b)) {
-      ImVec2 d = io.MouseDelta;
-      float moved = std::hypot(io.MousePos.x - tools.press_pos.x, io.MousePos.y - tools.press_pos.y);
-      if (moved > 3) tools.camera_moved = true;
-      if (tools.camera_moved && (d.x != 0 || d.y != 0)) {
-        Camera& cam = doc.scene.camera;
-        bool panning = b == ImGuiMouseButton_Middle || io.KeyShift;
-        // Orbit as in Blender, as if the scene were grabbed: a drag right turns it right, a drag
-        // up tilts its near side up (the camera goes down); View > Invert vertical orbit flips that.
-        if (panning) pan(cam, {-d.x / size.y, d.y / size.y});
-        else orbit(cam, -d.x * 0.008f, d.y * 0.008f * (state.settings.invert_vertical_orbit ? -1 : 1));
-        tools.navigated = true;
-      }
-      if (tools.camera_moved) tools.interacting = true;
-    } else {
-      if (b == ImGuiMouseButton_Left && !tools.camera_moved) {
-        glm::vec2 film{(tools.press_pos.x - origin.x) / size.x, (tools.press_pos.y - origin.y) / size.y};
-        click_viewport(doc, state, film, focusing);
-      }
-      tools.camera_button = -1;
-    }
-  }
-  if (hovered && io.MouseWheel != 0) {
-    dolly(doc.scene.camera, std::pow(0.85f, io.MouseWheel));
-    tools.navigated = true;
-  }
-
-  // The image goes under this window once the viewport has rendered (show_viewport_image),
-  // with the film frame and the selection's outline, which are drawn there too.
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  ImVec2 end(origin.x + size.x, origin.y + size.y);
-  state.viewport.film = doc.scene.film;
-  state.viewport.outline.clear();
-  for (glm::vec2 p : selection_outline(doc.scene, doc.selection, {size.x, size.y}))
-    state.viewport.outline.push_back(ImVec2(origin.x + p.x, origin.y + p.y));
-  state.viewport.user_active = ImGui::IsAnyItemActive() || tools.interacting || io.MouseWheel != 0 ||
-                               io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || ImGui::IsAnyMouseDown();
-  gizmo = make_gizmo(doc, tools.gizmo_mode, origin, size);  // where the object is now
-  draw_gizmo(gizmo, tools.gizmo_mode, tools.gizmo_hover, tools.gizmo_handle);
-  const char* hint = nullptr;
-  if (tools.region_tool) hint = "Region: drag a rectangle to render only there (Ctrl+Alt+B clears)";
-  else if (tools.focus_tool) hint = "Focus tool: click a surface";
-  else if (tools.gizmo_mode == GizmoMode::rotate && doc.selection.kind == SelectionKind::sphere)
-    hint = "Rotate: a sphere looks the same turned (select a quad)";
-  if (hint) dl->AddText(ImVec2(origin.x + 10, end.y - ImGui::GetFrameHeight() - 4), IM_COL32(255, 230, 120, 255), hint);
+  continue_viewport_gesture(doc, state, origin, size, hovered, focusing);
+  draw_viewport_overlays(doc, state, origin, size);
   ImGui::EndChild();
   ImGui::End();
 }

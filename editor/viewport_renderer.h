@@ -52,6 +52,22 @@ class ViewportRenderer {
   const PreviewResolution& preview() const { return preview_; }
 
  private:
+  // The frame's trace size and whether the scene reached the renderer.
+  struct Sync {
+    int full_w = 1, full_h = 1;  // the viewport's framebuffer pixels
+    int divisor = 1;             // traced at full / divisor
+    bool synced = false;         // the scene is valid and the renderer holds it
+    PreviewFrame preview;        // what the automatic level saw this frame
+  };
+  void record_frame_time();
+  // Hands the scene (framed to the export's film) to the renderer at the level's size.
+  Sync sync_scene(const Scene& scene, const ViewportRequest& request, FrameStats& stats);
+  void update_estimate(bool synced, bool restarted);
+  // The region, the samples of this frame and the slice they may take.
+  void trace_for_request(const ViewportRequest& request, const Sync& sync,
+                         const std::optional<PixelRect>& region, bool restarted);
+  // The texture the viewport shows: the display, the denoised one or the held coarser level.
+  unsigned shown_texture(const Scene& scene, const ViewportRequest& request, FrameStats& stats);
   // Traces `samples` per pixel, or the next band of a pass too long for `slice_seconds`.
   void trace_slice(int samples, double slice_seconds, int64_t full_pixels);
 

@@ -26,12 +26,6 @@ namespace fs = std::filesystem;
 using test::kProjects;
 using test::UiTest;
 
-double seconds_of(const std::function<void()>& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // Preview > full on a window where one pass takes far longer than an idle frame may trace: the
 // pass goes in bands of rows over several frames (the status line shows how far), each frame
 // stays near the slice, and the samples arrive when a pass ends.
