@@ -5,7 +5,8 @@
 // ProjectError; anything else (a crash, a sanitizer report, another exception, a save that
 // fails, a round trip that differs) is a finding. Nothing touches the file system per input:
 // image files are not opened (check_files false; fuzz_image covers the readers) and the scene
-// is saved to the folder it was loaded from, so asset paths are not rebased.
+// is saved to the folder it was loaded from, so asset paths are not rebased; absolute ones are
+// written relative to that folder (relative_asset_paths), which looks the folder up once.
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -25,9 +26,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;  // refused with a message: fine
   }
   if (!glint::validate_scene(scene, false).empty()) std::abort();  // a half-valid scene
-  // What loads must save, and the saved text must load back to the same scene.
+  // What loads must save, and the saved text must load back to the scene save meant to write:
+  // the same scene, with absolute asset paths made relative to the folder.
   const std::string saved = glint::save_project_text(scene, file);  // throws: a finding
   const glint::Scene again = glint::load_project_text(saved, "again.glint", dir, false);
-  if (!(again == scene)) std::abort();
+  if (!(again == glint::relative_asset_paths(scene, dir))) std::abort();
+  // Saving again changes nothing.
+  if (glint::save_project_text(again, file) != saved) std::abort();
   return 0;
 }
