@@ -175,9 +175,13 @@ def rows(results, ld):
     return out
 
 
-def markdown(race_rows, ld, fmt_s):
+def markdown(race_rows, ld, fmt_s, heading="## The race: time to relMSE 1e-2 and 1e-3, Glint against Mitsuba",
+             intro=None, vs_path_table=True):
+    """The race's tables under `heading`, after `intro` (default: how the race is run and read),
+    and where ptracer ran (unless `vs_path_table` is False) the table of its converged image
+    against path's."""
     with_pt = any("ptracer" in row["targets"][RACE_TARGETS[0]] for row in race_rows)
-    L = ["## The race: time to relMSE 1e-2 and 1e-3, Glint against Mitsuba\n",
+    L = [heading + "\n", intro or (
          "Same machine, same run, every scene that both model the same way. Glint with its "
          f"default sampler (Owen-scrambled Sobol), Mitsuba's `path` with `independent` and with `{ld}` "
          "(the winner of the equal-spp trial)" +
@@ -194,7 +198,7 @@ def markdown(race_rows, ld, fmt_s):
          "interpolated (log-log) between the rungs on either side of the target; \"(fit)\": a "
          f"time past the last rung of that ladder, extrapolated from a log-log fit of its last {TAIL_RUNGS} "
          "rungs (not measured); \"<=\": already reached at the first rung, so the time is at "
-         "most that rung's.\n"]
+         "most that rung's.\n")]
     names = ["independent", ld] + (["ptracer"] if with_pt else [])
     for target in RACE_TARGETS:
         L.append(f"| scene | Glint t({target:g}) | " +
@@ -212,7 +216,7 @@ def markdown(race_rows, ld, fmt_s):
             L.append(f"| {row['scene']} | {fmt_time(t['glint'], fmt_s)} | " + " | ".join(cells) +
                      f" | {t['best'] or 'none'} | {fmt_ratio(t['ratio_best'])} | {t['verdict']} |")
         L.append("")
-    if with_pt:
+    if with_pt and vs_path_table:
         L += vs_path_markdown(race_rows)
     return "\n".join(L)
 
