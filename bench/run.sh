@@ -3,7 +3,7 @@
 # reference. Makes its own Python environment (bench/.venv, pinned by bench/requirements.txt),
 # builds Glint when build/glint is missing (and no --glint is given), then runs bench/tools/run.py, which writes
 # bench/reports/RESULTS.md and its plots. Arguments go to run.py (--quick: tiny validation run written
-# to build-bench/quick/; --help lists the rest).
+# to build-bench/quick/; --help lists the rest), or with --caustics first to caustic_race.py.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 VENV=bench/.venv
@@ -22,4 +22,10 @@ case " $* " in
   *) [ -x build/glint ] || bash scripts/build.sh ;;
 esac
 export PYTHONDONTWRITEBYTECODE=1
+# --caustics (first): the race on the caustic scenes alone, bench/tools/caustic_race.py, which
+# writes bench/reports/CAUSTICS.md and leaves RESULTS.md as it is.
+if [ "${1:-}" = "--caustics" ]; then
+  shift
+  exec "$VENV/bin/python" bench/tools/caustic_race.py "$@"
+fi
 exec "$VENV/bin/python" bench/tools/run.py "$@"

@@ -219,6 +219,30 @@ def scenes(assets=None, out_dir=SCENES):
                  sphere("rough_ball", [170, 90, 200], 90, "rough_glass")],
         quads=box["quads"], max_bounces=12)
 
+    # 10. Caustics: a smooth glass ball (ior 1.5) and a white mirror ball on a floor in front of a
+    # wall, lit only by a tiny, very bright sphere lamp (radius 0.03). The focused light on the
+    # floor (through the glass, off the mirror) is reached from the camera only by a BSDF sample
+    # through a specular bounce hitting the lamp: the hard case for a path tracer. The mirror is
+    # white (colour 1) so that Mitsuba models it identically (bench/tools/mitsuba_export.py).
+    caustic_materials = [mat("grey", "matte", [0.6, 0.6, 0.6]),
+                         mat("glass", "refractive", [1, 1, 1], roughness=0, ior=1.5),
+                         mat("mirror", "reflective", [1, 1, 1], roughness=0),
+                         mat("bulb", "matte", [0, 0, 0], emission=[2500, 2300, 1900])]
+    caustic_spheres = [sphere("bulb", [0.3, 1.8, 0.3], 0.03, "bulb"),
+                       sphere("glass_ball", [-0.7, 0.5, 0], 0.5, "glass"),
+                       sphere("mirror_ball", [0.75, 0.4, 0.2], 0.4, "mirror")]
+    caustic_camera = cam([0, 1.5, 4], [0, 0.45, 0], 40, focus=4.1)
+    out["caustics"] = project(
+        caustic_camera, (256, 192), caustic_materials, spheres=caustic_spheres,
+        quads=[floor_quad("floor", "grey", 4),
+               quad("wall", "grey", [[-4, 0, -1.2], [-4, 4, -1.2], [4, 0, -1.2], [4, 4, -1.2]])])
+
+    # 11. The same balls and lamp under a constant sky and without the wall: the caustics sit on a
+    # floor that the sky also lights (the caustic is a smaller part of each pixel's value).
+    out["caustics_sky"] = project(
+        caustic_camera, (256, 192), caustic_materials, spheres=caustic_spheres,
+        quads=[floor_quad("floor", "grey", 4)], environment=const_env([0.35, 0.45, 0.6], intensity=1))
+
     # 9. The showcase, projects/default.glint, with its asset paths rebased to bench/scenes/.
     with open(os.path.join(ROOT, "projects", "default.glint")) as f:
         show = json.load(f)

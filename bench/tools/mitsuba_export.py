@@ -47,7 +47,8 @@ test or by the Cornell/furnace comparisons in RESULTS.md):
 - film             -> hdrfilm with a box filter of radius 0.5 (Glint averages uniformly
                       jittered samples inside each pixel), linear float RGB.
 - integrator       -> path, max_depth = max_bounces + 1 (docs/DESIGN.md section 6), Russian roulette
-                      from depth 5 as Mitsuba's default (unbiased; Glint has none).
+                      from depth 5 as Mitsuba's default (unbiased; Glint has none); or
+                      ptracer (INTEGRATORS below) with the same max_depth.
 
 Refused: glossy and transparent materials, rough or non-white mirrors, refractive materials
 with ior 1 (Mitsuba refuses eta = 1) or with emission, any texture, coverage (opacity < 1).
@@ -63,6 +64,8 @@ import time
 
 import numpy as np
 
+from rectangle_frames import right_handed
+
 MATERIAL_DEFAULTS = {"type": "matte", "color": [0.8, 0.8, 0.8], "color_texture": None,
                      "emission": [0, 0, 0], "emission_texture": None, "roughness": 0,
                      "roughness_texture": None, "ior": 1.5, "opacity": 1}
@@ -76,6 +79,8 @@ class Unsupported(Exception):
 
 
 def _mitsuba():
+    # Dr.Jit reads DRJIT_LIBLLVM_PATH when it is imported: the library is chosen before that.
+    choose_variant()
     import mitsuba as mi
     if mi.variant() is None:
         mi.set_variant(choose_variant()[0])
@@ -222,6 +227,13 @@ def scene_size(doc):
 # prime; `samples_per_pixel` says what a scene really traced.
 SAMPLERS = ("independent", "ldsampler", "multijitter", "orthogonal")
 
+# Mitsuba's integrators that the bench races: `path` (unidirectional, from the camera, as Glint)
+# and `ptracer` (particles from the lights, each vertex connected to the camera; the same
+# max_depth and rr_depth meaning). ptracer cannot connect a specular vertex to the camera, so a
+# mirror or glass seen directly (or anything seen through one) stays black: its converged image
+# is a different image wherever those show (bench/tools/race.py checks it before racing it).
+INTEGRATORS = ("path", "ptracer")
+
 
 def glint_executable():
     """The `glint` that converts scenes: $GLINT, else the build folder's (run.py passes --glint
@@ -292,14 +304,17 @@ def _xml_to_dict(element, folder, params, mi):
 
 
 def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation_offset_deg=-90.0,
-           resample_env_rows=True, sampler="independent"):
-    """Returns (scene dict, notes). Raises Unsupported. `sampler` is one of SAMPLERS.
+           resample_env_rows=True, sampler="independent", integrator="path"):
+    """Returns (scene dict, notes). Raises Unsupported. `sampler` is one of SAMPLERS, `integrator`
+    one of INTEGRATORS.
     The scene is `glint convert`'s Mitsuba XML (renderer/mitsuba_writer.cpp, whose conventions
     are the ones listed above), read into a dictionary; the environment image is handed over
     resampled (its `envmap` parameter). `rotation_offset_deg` and `resample_env_rows` exist for
     the convention test only (to show that the wrong ones fail)."""
     if sampler not in SAMPLERS:
         raise ValueError(f"unknown Mitsuba sampler {sampler!r} (one of {', '.join(SAMPLERS)})")
+    if integrator not in INTEGRATORS:
+        raise ValueError(f"unknown Mitsuba integrator {integrator!r} (one of {', '.join(INTEGRATORS)})")
     reasons = unsupported_reasons(doc)
     if reasons:
         raise Unsupported("; ".join(reasons))
@@ -324,6 +339,12 @@ def export(doc, width=None, height=None, spp=16, seed=0, mesh_dir=None, rotation
               "resx": str(int(width or film.get("width", 960))),
               "resy": str(int(height or film.get("height", 540)))}
     d = _xml_to_dict(ET.parse(xml_path).getroot(), mesh_dir, params, mi)
+    for v in d.values():  # see rectangle_frames.py: ptracer needs right-handed frames
+        if isinstance(v, dict) and v.get("type") == "rectangle" and "to_world" in v:
+            v["to_world"] = mi.ScalarTransform4f(np.array(right_handed(np.array(v["to_world"].matrix).tolist())))
+    if d["integrator"].get("type") != "path":
+        raise RuntimeError(f"glint convert wrote a {d['integrator'].get('type')!r} integrator, not path")
+    d["integrator"]["type"] = integrator  # the same max_depth: both count the camera's segment
     d["integrator"]["hide_emitters"] = False
     d["sensor"]["sampler"] = {"type": sampler, "sample_count": int(spp), "seed": int(seed)}
     env = {**ENV_DEFAULTS, **doc.get("environment", {})}
@@ -375,6 +396,7 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--width", type=int)
     ap.add_argument("--height", type=int)
+    ap.add_argument("--integrator", choices=INTEGRATORS, default="path")
     a = ap.parse_args(argv)
     doc = load_project(a.project)
     film = doc.get("film", {})
@@ -382,7 +404,7 @@ def main(argv=None):
     if w and not h:
         h = max(1, round(w * film.get("height", 540) / film.get("width", 960)))
     try:
-        d, notes = export(doc, w, h, a.spp, a.seed)
+        d, notes = export(doc, w, h, a.spp, a.seed, integrator=a.integrator)
     except Unsupported as e:
         print(f"{a.project}: not exported: {e}", file=sys.stderr)
         return 3

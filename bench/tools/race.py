@@ -1,6 +1,9 @@
-"""The race: time to relMSE 1e-2 and 1e-3 for Glint and for Mitsuba with two samplers, each
-against its own converged image, and the ratio Glint time / Mitsuba time (the target: at most
-0.5 on every scene that both model, against both samplers).
+"""The race: time to relMSE 1e-2 and 1e-3 for Glint and for Mitsuba's contenders (`path` with two
+samplers, and on the caustic scenes the particle tracer `ptracer`), each against its own
+converged image, and the ratio Glint time / Mitsuba time (the target: at most 0.5 on every scene
+that both model, against the better valid contender). A contender other than path counts only
+where its converged image is shown to be path's (valid_at): ptracer leaves mirrors and glass
+seen from the camera black, so it may converge quickly to another image.
 
 A time comes from the ladder of mean relMSE against trace time (rungs of doubling spp). Inside the
 measured range it is interpolated, linearly in log-log, between the two rungs on either side of
@@ -102,47 +105,141 @@ def meets(r):
     return v <= GOAL
 
 
+def valid_at(vs_path, target):
+    """Whether a contender is shown to converge to path's image at the precision of `target`.
+    `vs_path` is None for path itself, else {"difference": relMSE (trimmed) of its converged
+    image against path's, "floor": the same between two converged path images of different
+    seeds (what noise alone gives)}. Valid when the floor is at most the target (path's image
+    is precise enough to tell) and the difference beyond the floor is at most the target too (a
+    contender that converges elsewhere by more than the error the race measures is not racing
+    to the same image)."""
+    if vs_path is None:
+        return True
+    d, floor = vs_path.get("difference"), vs_path.get("floor")
+    if d is None or floor is None or not (math.isfinite(d) and math.isfinite(floor)):
+        return False
+    return floor <= target and d - floor <= target
+
+
+def best(times, valid):
+    """The valid contender with the shortest time (its name), or None when none has a time.
+    `times`: {name: (seconds, mark)}; `valid`: {name: bool}."""
+    known = [(t[0], name) for name, t in times.items() if valid.get(name) and t[0] is not None]
+    return min(known)[1] if known else None
+
+
+def verdict(ratios):
+    """"yes" when the goal is met against every ratio given (the valid contenders), "no" when
+    known to be missed against one, else "unknown"; "(fit)" when a ratio leans on a fit."""
+    ok = [meets(r) for r in ratios]
+    text = "yes" if ok and all(o is True for o in ok) else (
+        "no" if any(o is False for o in ok) else "unknown")
+    if text != "unknown" and any("fit" in r[1] for r in ratios):
+        text += " (fit)"
+    return text
+
+
+def contenders(r, ld):
+    """{name: (summary, vs_path)} of the Mitsuba contenders that a scene's results hold: path with
+    `independent` and with `ld`, and ptracer where it was run."""
+    out = {"independent": (r["mitsuba"]["summary"], None), ld: (r["mitsuba_ld"][ld]["summary"], None)}
+    p = r.get("mitsuba_ptracer")
+    if p and p.get("exported"):
+        out["ptracer"] = (p["summary"], p.get("vs_path"))
+    return out
+
+
 def rows(results, ld):
-    """One row per scene that Mitsuba models: the times and ratios for each target."""
+    """One row per scene that Mitsuba models: the times and ratios for each target, and the
+    better valid contender."""
     out = []
     for name, r in results.items():
         m = r.get("mitsuba")
         if not m or not m.get("exported") or ld not in r.get("mitsuba_ld", {}):
             continue
-        row = {"scene": name, "targets": {}}
+        cs = contenders(r, ld)
+        row = {"scene": name, "targets": {},
+               "vs_path": {c: vp for c, (_, vp) in cs.items() if vp is not None}}
         for target in RACE_TARGETS:
             g = time_to(r["summary"], target)
-            mi = time_to(m["summary"], target)
-            ml = time_to(r["mitsuba_ld"][ld]["summary"], target)
-            row["targets"][target] = {"glint": g, "independent": mi, ld: ml,
-                                      "ratio_independent": ratio(g, mi), "ratio_" + ld: ratio(g, ml)}
+            t = {"glint": g, "valid": {}}
+            for c, (summary, vs_path) in cs.items():
+                t[c] = time_to(summary, target)
+                t["ratio_" + c] = ratio(g, t[c])
+                t["valid"][c] = valid_at(vs_path, target)
+            t["best"] = best({c: t[c] for c in cs}, t["valid"])
+            t["ratio_best"] = ratio(g, t[t["best"]]) if t["best"] else (None, "n/a")
+            t["verdict"] = verdict([t["ratio_" + c] for c in cs if t["valid"][c]])
+            row["targets"][target] = t
         out.append(row)
     return out
 
 
-def markdown(race_rows, ld, fmt_s):
-    L = ["## The race: time to relMSE 1e-2 and 1e-3, Glint against Mitsuba\n",
+def markdown(race_rows, ld, fmt_s, heading="## The race: time to relMSE 1e-2 and 1e-3, Glint against Mitsuba",
+             intro=None, vs_path_table=True):
+    """The race's tables under `heading`, after `intro` (default: how the race is run and read),
+    and where ptracer ran (unless `vs_path_table` is False) the table of its converged image
+    against path's."""
+    with_pt = any("ptracer" in row["targets"][RACE_TARGETS[0]] for row in race_rows)
+    L = [heading + "\n", intro or (
          "Same machine, same run, every scene that both model the same way. Glint with its "
-         f"default sampler (Owen-scrambled Sobol), Mitsuba with `independent` and with `{ld}` (the "
-         "winner of the equal-spp trial below); each against its own converged image, so that "
-         "the times measure noise only. Ratio = Glint's time / Mitsuba's; the target is at most "
-         f"{GOAL} against both samplers. A time inside a ladder is interpolated (log-log) "
-         "between the rungs on either side of the target; \"(fit)\": a time past the last rung "
-         f"of that ladder, extrapolated from a log-log fit of its last {TAIL_RUNGS} rungs (not "
-         "measured); \"<=\": already reached at the first rung, so the time is at most that "
-         "rung's.\n"]
+         f"default sampler (Owen-scrambled Sobol), Mitsuba's `path` with `independent` and with `{ld}` "
+         "(the winner of the equal-spp trial)" +
+         (", and Mitsuba's particle tracer `ptracer` (`independent`) on the scenes where it ran"
+          if with_pt else "") +
+         "; each against its own converged image, so that the times measure noise only. Ratio = "
+         f"Glint's time / Mitsuba's; the target is at most {GOAL} against the better valid "
+         "contender (met when it is met against every valid one). " +
+         ("A contender is valid at a target when two converged path images (two seeds) agree "
+          "to the target (trimmed relMSE) and its converged image differs from path's by at "
+          "most the target beyond that floor (path always is; ptracer leaves mirrors and glass "
+          "seen from the camera black, see the table after these). " if with_pt else "") +
+         "A time inside a ladder is "
+         "interpolated (log-log) between the rungs on either side of the target; \"(fit)\": a "
+         f"time past the last rung of that ladder, extrapolated from a log-log fit of its last {TAIL_RUNGS} "
+         "rungs (not measured); \"<=\": already reached at the first rung, so the time is at "
+         "most that rung's.\n")]
+    names = ["independent", ld] + (["ptracer"] if with_pt else [])
     for target in RACE_TARGETS:
-        L.append(f"| scene | Glint t({target:g}) | Mitsuba independent | ratio | Mitsuba {ld} | ratio | target met |")
-        L.append("|---|---|---|---|---|---|---|")
+        L.append(f"| scene | Glint t({target:g}) | " +
+                 " | ".join(f"Mitsuba {c} | ratio" for c in names) + " | better valid | ratio | target met |")
+        L.append("|---|---|" + "---|---|" * len(names) + "---|---|---|")
         for row in race_rows:
             t = row["targets"][target]
-            ok = [meets(t["ratio_independent"]), meets(t["ratio_" + ld])]
-            verdict = "yes" if all(o is True for o in ok) else (
-                "no" if any(o is False for o in ok) else "unknown")
-            if verdict != "unknown" and any("fit" in t[k][1] for k in ("ratio_independent", "ratio_" + ld)):
-                verdict += " (fit)"
-            L.append(f"| {row['scene']} | {fmt_time(t['glint'], fmt_s)} | "
-                     f"{fmt_time(t['independent'], fmt_s)} | {fmt_ratio(t['ratio_independent'])} | "
-                     f"{fmt_time(t[ld], fmt_s)} | {fmt_ratio(t['ratio_' + ld])} | {verdict} |")
+            cells = []
+            for c in names:
+                if c not in t:
+                    cells += ["-", "-"]
+                    continue
+                r = fmt_ratio(t["ratio_" + c])
+                cells += [fmt_time(t[c], fmt_s), r if t["valid"][c] else f"{r} (not valid)"]
+            L.append(f"| {row['scene']} | {fmt_time(t['glint'], fmt_s)} | " + " | ".join(cells) +
+                     f" | {t['best'] or 'none'} | {fmt_ratio(t['ratio_best'])} | {t['verdict']} |")
         L.append("")
+    if with_pt and vs_path_table:
+        L += vs_path_markdown(race_rows)
     return "\n".join(L)
+
+
+def vs_path_markdown(race_rows):
+    """The table of how far each non-path contender's converged image is from path's."""
+    L = ["### ptracer's converged image against path's\n",
+         "relMSE between Mitsuba's converged `ptracer` image and its converged `path` image (same "
+         "samples per pixel), beside the same between two converged `path` images of different "
+         "seeds (the floor that noise alone gives); trimmed: the worst 0.1% of pixels dropped, "
+         "so that a few fireflies do not decide. Valid at a target when the trimmed floor is at "
+         "most the target and the trimmed difference beyond it is too.\n",
+         "| scene | relMSE(ptracer, path) | relMSE(path, path) | trimmed | trimmed floor | "
+         "mean-lum. bias ptracer vs path | valid at " +
+         " | valid at ".join(f"{t:g}" for t in RACE_TARGETS) + " |",
+         "|---|---|---|---|---|---|" + "---|" * len(RACE_TARGETS)]
+    for row in race_rows:
+        vp = row["vs_path"].get("ptracer")
+        if vp is None:
+            continue
+        L.append(f"| {row['scene']} | {vp['relmse']:.3g} | {vp['floor_relmse']:.3g} | "
+                 f"{vp['difference']:.3g} | {vp['floor']:.3g} | {vp['mean_bias']:+.2%} | " +
+                 " | ".join("yes" if row["targets"][t]["valid"]["ptracer"] else "no"
+                            for t in RACE_TARGETS) + " |")
+    L.append("")
+    return L

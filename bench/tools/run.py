@@ -11,7 +11,9 @@ For each bench scene (bench/scenes/*.glint, written by make_scenes.py):
      checked against these numbers;
   3. for the scenes the exporter accepts, Mitsuba 3 (path integrator, same resolution, CPU):
      a converged image (--mitsuba-ref-spp) for the bias of Glint's reference against it, and
-     its own 1, 2, 4, ... --mitsuba-max-spp ladder for the equal-time error ratio;
+     its own 1, 2, 4, ... --mitsuba-max-spp ladder for the equal-time error ratio; on the
+     caustic scenes (PTRACER_SCENES) also the particle tracer, with its own converged image and
+     ladder, and a second path image for the check that ptracer converges to path's image;
   4. bench/reports/RESULTS.md with log-log plots, fitted slopes, the time to reach relMSE 1e-1, 1e-2
      and 1e-3, samples per second, and the Mitsuba comparison.
 """
@@ -49,7 +51,9 @@ import mitsuba_samplers  # noqa: E402
 import race  # noqa: E402
 
 SCENES = ["cornell", "roughness_ladder", "thin_glass", "small_emitter", "env_dof",
-          "huge_sphere_floor", "white_furnace", "glass", "showcase"]
+          "huge_sphere_floor", "white_furnace", "glass", "showcase", "caustics", "caustics_sky"]
+# The scenes where Mitsuba's particle tracer races too: light focused by glass and mirrors.
+PTRACER_SCENES = ("caustics", "caustics_sky", "glass")
 TARGETS = [1e-1, 1e-2, 1e-3]
 REF_SEED = 1000001
 MITSUBA_REF_SEED = 2000001
@@ -151,7 +155,30 @@ def ladder(max_spp):
     return out
 
 
-def bench_glint(name, project, glint, work, cfg, has_log):
+def glint_ladder(project, glint, work, cfg, ref, seed):
+    """One seed's renders at 1, 2, 4, ... max_spp, each against Glint's reference `ref`."""
+    rows = []
+    for spp in ladder(cfg["max_spp"]):
+        out = os.path.join(work, f"s{seed}_{spp}.exr")
+        r = glint_render(glint, project, out, spp, seed, cfg["width"])
+        img = metrics.read_exr(out)
+        rows.append({"seed": seed, "spp": spp, "seconds": r["seconds"],
+                     "relmse": metrics.relmse(img, ref),
+                     "relmse_trimmed": metrics.relmse_trimmed(img, ref),
+                     "mape": metrics.mape(img, ref), "mean_bias": metrics.mean_bias(img, ref),
+                     "flip": metrics.flip(img, ref), "mean_lum": metrics.mean_lum(img),
+                     "nonfinite": int(np.sum(~np.isfinite(img)))})
+        if spp != cfg["max_spp"]:
+            os.remove(out)
+    last = rows[-1]
+    log(f"  seed {seed}: {cfg['max_spp']} spp in {fmt_s(last['seconds'])}, relMSE "
+        f"{last['relmse']:.3g}, FLIP {last['flip']:.3g}")
+    return rows
+
+
+def glint_reference(project, glint, work, cfg):
+    """Glint's converged image (reused while the project, counts and binary are unchanged):
+    (image, the render's info)."""
     os.makedirs(work, exist_ok=True)
     ref_path = os.path.join(work, "reference.exr")
     meta_path = os.path.join(work, "reference.json")
@@ -164,24 +191,15 @@ def bench_glint(name, project, glint, work, cfg, has_log):
         info = glint_render(glint, project, ref_path, cfg["ref_spp"], REF_SEED, cfg["width"])
         json.dump({"key": key, "info": info}, open(meta_path, "w"))
         log(f"  reference: {cfg['ref_spp']} spp in {fmt_s(info['seconds'])}")
-    ref = metrics.read_exr(ref_path)
+    return metrics.read_exr(ref_path), info
+
+
+def bench_glint(name, project, glint, work, cfg, has_log):
+    ref, info = glint_reference(project, glint, work, cfg)
+    ref_path = os.path.join(work, "reference.exr")
     rows = []
     for seed in range(1, cfg["seeds"] + 1):
-        for spp in ladder(cfg["max_spp"]):
-            out = os.path.join(work, f"s{seed}_{spp}.exr")
-            r = glint_render(glint, project, out, spp, seed, cfg["width"])
-            img = metrics.read_exr(out)
-            rows.append({"seed": seed, "spp": spp, "seconds": r["seconds"],
-                         "relmse": metrics.relmse(img, ref),
-                         "relmse_trimmed": metrics.relmse_trimmed(img, ref),
-                         "mape": metrics.mape(img, ref), "mean_bias": metrics.mean_bias(img, ref),
-                         "flip": metrics.flip(img, ref), "mean_lum": metrics.mean_lum(img),
-                         "nonfinite": int(np.sum(~np.isfinite(img)))})
-            if spp != cfg["max_spp"]:
-                os.remove(out)
-        last = rows[-1]
-        log(f"  seed {seed}: {cfg['max_spp']} spp in {fmt_s(last['seconds'])}, relMSE "
-            f"{last['relmse']:.3g}, FLIP {last['flip']:.3g}")
+        rows += glint_ladder(project, glint, work, cfg, ref, seed)
     logcheck = None
     if has_log:
         logcheck = []
@@ -194,29 +212,69 @@ def bench_glint(name, project, glint, work, cfg, has_log):
     return {"info": info, "ref": ref, "rows": rows, "log": logcheck}
 
 
-def summarize(rows, key="relmse"):
+def summarize(rows, key="relmse", time_stat=np.mean):
+    """Per sample count: the errors' mean over seeds and the seconds' `time_stat` (the mean, or
+    the median where other work on the machine makes some renders slow)."""
     spps = sorted({r["spp"] for r in rows})
     mean = lambda k, s: float(np.mean([r[k] for r in rows if r["spp"] == s]))
-    return {"spp": spps, "seconds": [mean("seconds", s) for s in spps],
+    return {"spp": spps, "seconds": [float(time_stat([r["seconds"] for r in rows if r["spp"] == s]))
+                                     for s in spps],
             key: [mean(key, s) for s in spps],
             "flip": [mean("flip", s) for s in spps] if "flip" in rows[0] else None,
             "lum_std": [float(np.std([r["mean_lum"] for r in rows if r["spp"] == s], ddof=1))
                         if len([r for r in rows if r["spp"] == s]) > 1 else float("nan") for s in spps]}
 
 
-def mitsuba_scene(project, work, w, h, sampler="independent"):
-    """The exported project loaded with `sampler`, its kernels compiled (a 1-spp warm-up, not
-    counted in any time below)."""
-    d, notes = mx.export(mx.load_project(project), w, h, 1, 0, mesh_dir=work, sampler=sampler)
+def mitsuba_scene(project, work, w, h, sampler="independent", integrator="path"):
+    """The exported project loaded with `sampler` and `integrator`, its kernels compiled (a
+    1-spp warm-up, not counted in any time below)."""
+    d, notes = mx.export(mx.load_project(project), w, h, 1, 0, mesh_dir=work, sampler=sampler,
+                         integrator=integrator)
     scene = mx._mitsuba().load_dict(d)
     mx.render(scene, 1, 0)
     return scene, notes
 
 
+def mitsuba_reference(project, work, w, h, cfg, integrator="path", seed=MITSUBA_REF_SEED):
+    """Mitsuba's converged image with `integrator` (independent sampler): (image, seconds).
+    Reused while the project, size, count, seed, integrator and Mitsuba are unchanged."""
+    os.makedirs(work, exist_ok=True)
+    name = ("mitsuba" if integrator == "path" else f"mitsuba_{integrator}") + \
+        ("" if seed == MITSUBA_REF_SEED else f"_seed{seed}")
+    path, meta = (os.path.join(work, f"{name}_reference{ext}") for ext in (".exr", ".json"))
+    key = {"project": open(project).read(), "spp": cfg["mitsuba_ref_spp"], "size": [w, h],
+           "integrator": integrator, "seed": seed, "mitsuba": mx._mitsuba().__version__,
+           "variant": mx._mitsuba().variant()}
+    if os.path.exists(path) and os.path.exists(meta) and json.load(open(meta)).get("key") == key:
+        log(f"  mitsuba {integrator} reference (seed {seed}): reused {path}")
+        return metrics.read_exr(path), json.load(open(meta))["seconds"]
+    scene, _ = mitsuba_scene(project, work, w, h, integrator=integrator)
+    ref_m, t_ref = mx.render(scene, cfg["mitsuba_ref_spp"], seed)
+    mx.write_exr(path, ref_m)
+    json.dump({"key": key, "seconds": t_ref}, open(meta, "w"))
+    log(f"  mitsuba {integrator} reference (seed {seed}): {cfg['mitsuba_ref_spp']} spp in {fmt_s(t_ref)}")
+    return ref_m, t_ref
+
+
+def mitsuba_ladder(scene, cfg, seed, ref_m, ref_g):
+    """One seed's renders of a loaded Mitsuba scene at 1, 2, 4, ... mitsuba_max_spp, against its
+    own converged image `ref_m` (and Glint's `ref_g`)."""
+    rows = []
+    for spp in ladder(cfg["mitsuba_max_spp"]):
+        img, secs = mx.render(scene, spp, seed)
+        # Samplers that round the count (orthogonal: prime squares) are logged at what they traced.
+        rows.append({"seed": seed, "spp": mx.samples_per_pixel(scene), "seconds": secs,
+                     "relmse": metrics.relmse(img, ref_m),
+                     "relmse_trimmed": metrics.relmse_trimmed(img, ref_m), "mean_lum": metrics.mean_lum(img),
+                     "relmse_vs_glint_ref": metrics.relmse(img, ref_g)})
+    return rows
+
+
 def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary, sampler="independent",
-                  ref_m=None):
+                  ref_m=None, integrator="path"):
     """Mitsuba's converged image (unless `ref_m` is given: then only the ladder) and its 1, 2,
-    4, ... ladder with `sampler`, against that converged image; the comparison with Glint."""
+    4, ... ladder with `sampler` and `integrator`, against that converged image; the comparison
+    with Glint."""
     doc = mx.load_project(project)
     reasons = mx.unsupported_reasons(doc)
     if reasons:
@@ -226,20 +284,19 @@ def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary, sampler
     h, w = ref_g.shape[:2]
     t_ref = None
     if ref_m is None:
-        scene, notes = mitsuba_scene(project, work, w, h)
-        ref_m, t_ref = mx.render(scene, cfg["mitsuba_ref_spp"], MITSUBA_REF_SEED)
-        mx.write_exr(os.path.join(work, "mitsuba_reference.exr"), ref_m)
-        log(f"  mitsuba reference: {cfg['mitsuba_ref_spp']} spp in {fmt_s(t_ref)}")
-    scene, notes = mitsuba_scene(project, work, w, h, sampler)
+        ref_m, t_ref = mitsuba_reference(project, work, w, h, cfg, integrator)
+    scene, notes = mitsuba_scene(project, work, w, h, sampler, integrator)
     rows = []
     for seed in range(1, cfg["seeds"] + 1):
-        for spp in ladder(cfg["mitsuba_max_spp"]):
-            img, secs = mx.render(scene, spp, seed)
-            # Samplers that round the count (orthogonal: prime squares) are logged at what they traced.
-            rows.append({"seed": seed, "spp": mx.samples_per_pixel(scene), "seconds": secs,
-                         "relmse": metrics.relmse(img, ref_m), "mean_lum": metrics.mean_lum(img),
-                         "relmse_vs_glint_ref": metrics.relmse(img, ref_g)})
-    ms = summarize(rows)
+        rows += mitsuba_ladder(scene, cfg, seed, ref_m, ref_g)
+    return mitsuba_comparison(rows, cfg, ref_m, ref_g, glint_summary, notes, t_ref, sampler, integrator)
+
+
+def mitsuba_comparison(rows, cfg, ref_m, ref_g, glint_summary, notes, t_ref, sampler, integrator,
+                       time_stat=np.mean):
+    """A Mitsuba ladder's summary and fits, and its comparison with Glint's."""
+    h, w = ref_g.shape[:2]
+    ms = summarize(rows, time_stat=time_stat)
     fit_mt = loglog_fit(ms["seconds"], ms["relmse"])
     fit_ms = loglog_fit(ms["spp"], ms["relmse"])
     fit_gt = loglog_fit(glint_summary["seconds"], glint_summary["relmse"])
@@ -258,13 +315,25 @@ def bench_mitsuba(name, project, work, cfg, glint_result, glint_summary, sampler
     sg = glint_summary["lum_std"][-1] * math.sqrt(glint_summary["spp"][-1] / cfg["ref_spp"])
     sm = ms["lum_std"][-1] * math.sqrt(ms["spp"][-1] / cfg["mitsuba_ref_spp"])
     sigma = math.sqrt(sg ** 2 + sm ** 2) / m_lum if m_lum > 0 else float("nan")
-    log(f"  mitsuba ({sampler}): bias {bias:+.3%} (sigma {sigma:.2%}), relMSE(glint ref, mitsuba ref) "
+    log(f"  mitsuba {integrator} ({sampler}): bias {bias:+.3%} (sigma {sigma:.2%}), relMSE(glint ref, mitsuba ref) "
         f"{rel_conv:.3g} (noise alone ~{noise:.3g}), equal-time ratio {ratio:.3g} at {fmt_s(t_star)}")
     return {"exported": True, "notes": notes, "rows": rows, "summary": ms, "t_ref": t_ref,
             "bias": bias, "sigma": sigma, "relmse_conv": rel_conv, "noise": noise,
             "ratio": ratio, "t_star": t_star, "fit_time": fit_mt, "fit_spp": fit_ms,
             "pixels": w * h, "mean_lum_mitsuba": m_lum, "mean_lum_glint": metrics.mean_lum(ref_g),
-            "ref": ref_m, "sampler": sampler}
+            "ref": ref_m, "sampler": sampler, "integrator": integrator}
+
+
+def versus_path(contender_ref, path_ref, path_ref2):
+    """How far a contender's converged Mitsuba image is from path's (same sample count), beside
+    the floor that noise alone gives: path's converged image of another seed against it. relMSE
+    as the race measures it, and trimmed (the worst 0.1% of pixels dropped, so that a few
+    fireflies in either image do not decide) for race.valid_at."""
+    return {"relmse": metrics.relmse(contender_ref, path_ref),
+            "floor_relmse": metrics.relmse(path_ref2, path_ref),
+            "difference": metrics.relmse_trimmed(contender_ref, path_ref),
+            "floor": metrics.relmse_trimmed(path_ref2, path_ref),
+            "mean_bias": metrics.mean_bias(contender_ref, path_ref)}
 
 
 # --------------------------------------------------------------------------------------------
@@ -718,6 +787,18 @@ def main():
                 results[n]["mitsuba_ld"] = {ld: bench_mitsuba(
                     n, os.path.join(scenes_dir, n + ".glint"), os.path.join(work, n, "mitsuba"), cfg,
                     results[n]["glint"], results[n]["summary"], sampler=ld, ref_m=ref_m)}
+            for n, _ in exported:
+                if n in PTRACER_SCENES:
+                    log(f"{n}: mitsuba ptracer")
+                    p = bench_mitsuba(n, os.path.join(scenes_dir, n + ".glint"),
+                                      os.path.join(work, n, "mitsuba"), cfg, results[n]["glint"],
+                                      results[n]["summary"], integrator="ptracer")
+                    h, w = results[n]["glint"]["ref"].shape[:2]
+                    ref2, _ = mitsuba_reference(os.path.join(scenes_dir, n + ".glint"),
+                                                os.path.join(work, n, "mitsuba"), w, h, cfg,
+                                                seed=MITSUBA_REF_SEED + 1)
+                    p["vs_path"] = versus_path(p["ref"], results[n]["mitsuba"]["ref"], ref2)
+                    results[n]["mitsuba_ptracer"] = p
             extra["race"] = race.rows(results, ld)
     if not a.no_qmc:
         log("sampler gain: bench/tools/qmc_gain.py (Sobol against PCG, direct-light Cornell box)")
@@ -744,7 +825,8 @@ def main():
     # Raw numbers beside the report, for re-plotting without re-rendering.
     raw = {n: {"glint": r["glint"]["rows"],
                "mitsuba": r.get("mitsuba", {}).get("rows") if r.get("mitsuba", {}).get("exported") else None,
-               "mitsuba_ld": {k: v["rows"] for k, v in r.get("mitsuba_ld", {}).items()}}
+               "mitsuba_ld": {k: v["rows"] for k, v in r.get("mitsuba_ld", {}).items()},
+               "mitsuba_ptracer": r["mitsuba_ptracer"]["rows"] if "mitsuba_ptracer" in r else None}
            for n, r in results.items()}
     with open(os.path.join(out_dir, f"{prefix}results.json"), "w") as f:
         json.dump({"config": cfg, "env": env, "scenes": raw, "ablation": extra.get("ablation"),
