@@ -95,6 +95,8 @@ void GpuRenderer::upload_changes(const Scene& scene, const SceneDigests& d) {
     counts_ = upload_geometry(tables_, packed);
     uniforms_.sphere_count = counts_.spheres;
     uniforms_.quad_count = counts_.quads;
+    uniforms_.caster_count = static_cast<int>(packed.casters.size());
+    std::copy(packed.casters.begin(), packed.casters.end(), uniforms_.casters.begin());
     bvh_.invalidate();  // refitted or rebuilt below if the BVH is used
     origin_ = origin;
   }
