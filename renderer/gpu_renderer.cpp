@@ -120,6 +120,7 @@ void GpuRenderer::update_features(const Scene& scene, const SceneDigests& d, boo
   if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
       d.environment != digests_.environment)
     features_ = scene_features(scene);
+  features_.mnee = features_.mnee && renderer_options_.mnee;
   features_.thin_lens = scene.camera.aperture_radius > 0;
   features_.loop_traversal = !use_bvh_;
   features_.bvh_traversal = use_bvh_;

@@ -61,6 +61,9 @@ struct GpuRendererOptions {
   WorkGroup work_group;  // of the compute shader
   // Always trace with the generic program (every feature compiled in): for measurements.
   bool force_generic_shader = false;
+  // Manifold next-event estimation in the programs of scenes that need it (renderer/
+  // mnee_casters.h); off: the path tracer alone (the same image in expectation; for measuring).
+  bool mnee = true;
   // Where specialised programs are built (renderer/program_worker.h): off the calling thread,
   // in a shared context, with the driver's first-draw compile done there too. Without one they
   // are built in this context with GL_KHR_parallel_shader_compile where the driver has it.

@@ -56,9 +56,9 @@ vec2 refract_2d(vec2 d, vec2 n, float eta) {
   return d / eta + (cos_i / eta - sqrt(k)) * n;
 }
 
-Chain2D mnee_chain(Meridian m, float alpha, bool glass, float ior) {
+// The chain of the ray from y along the unit direction dir (cos alpha, sin alpha).
+Chain2D mnee_chain_along(Meridian m, vec2 dir, bool glass, float ior) {
   Chain2D c = Chain2D(vec2(0.0), vec2(0.0), vec2(1.0, 0.0), false);
-  vec2 dir = vec2(cos(alpha), sin(alpha));
   vec2 center = vec2(m.dist, 0.0);
   float s = m.dist * dir.y;
   float h2 = (m.radius - s) * (m.radius + s);
@@ -68,17 +68,21 @@ Chain2D mnee_chain(Meridian m, float alpha, bool glass, float ior) {
   c.p1 = t1 * dir;
   vec2 n1 = (c.p1 - center) / m.radius;
   if (glass) {
-    vec2 d1 = normalize(refract_2d(dir, n1, ior));
+    vec2 d1 = refract_2d(dir, n1, ior);  // (unit, as refract_2d keeps the length)
     c.p_last = c.p1 - 2.0 * dot(d1, c.p1 - center) * d1;  // the chord's far end
     vec2 d2 = refract_2d(d1, (center - c.p_last) / m.radius, 1.0 / ior);
     if (dot(d2, d2) == 0.0) return c;  // (no total internal reflection in a sphere)
-    c.d_out = normalize(d2);
+    c.d_out = d2;
   } else {
     c.p_last = c.p1;
     c.d_out = reflect(dir, n1);
   }
   c.valid = dot(c.d_out, m.x2 - c.p_last) > 0.0;
   return c;
+}
+
+Chain2D mnee_chain(Meridian m, float alpha, bool glass, float ior) {
+  return mnee_chain_along(m, vec2(cos(alpha), sin(alpha)), glass, ior);
 }
 
 // Signed distance of x from the chain's outgoing ray: 0 where the chain reaches x.
@@ -274,30 +278,54 @@ bool mnee_setup(vec3 x, int bounce, out MneeSetup s) {
   return true;
 }
 
+// The refined root of a bracket (a, g(a), b, g(b)) and its chain's contribution; 0 for an
+// empty bracket (a = b).
+vec3 mnee_bracket(MneeSetup s, vec4 bracket, float h, SurfaceMaterial m, vec3 x, vec3 n, vec3 wo,
+                  float error_scale) {
+  if (!(bracket.z > bracket.x)) return vec3(0.0);
+  float root = mnee_refine(s.m, s.glass, s.caster_material.ior, bracket.x, bracket.y, bracket.z, bracket.w);
+  return root > -1e29 ? mnee_root(s, root, h, m, x, n, wo, error_scale) : vec3(0.0);
+}
+
 // MNEE at the non-delta vertex x (n on wo's side): the sum over every chain found of one light
-// point and caster, throughput not included (as direct_light).
+// point and caster, throughput not included (as direct_light). The scan and the refinement are
+// not nested: under SIMD execution a loop nested in the scan would run whenever any lane had a
+// bracket at that grid point.
 vec3 manifold_next_event(SurfaceMaterial m, vec3 x, vec3 n, vec3 wo, float error_scale, int bounce) {
   MneeSetup s;
   if (!mnee_setup(x, bounce, s)) return vec3(0.0);
   float ior = s.caster_material.ior;
   float alpha_max = asin(min(1.0, s.m.radius / s.m.dist)) * (1.0 - 1e-4);
-  float step = 2.0 * alpha_max / float(MNEE_GRID - 1);
-  float h = 5e-3 * step;  // of the central difference in mnee_jacobian
-  vec3 sum = vec3(0.0);
-  float a = -alpha_max;
-  Chain2D ca = mnee_chain(s.m, a, s.glass, ior);
+  // A mirror's chains with alpha < 0 stay on the far side of the axis from x (the reflected
+  // ray's distance from the axis only grows): the scan covers (0, alpha_max) for mirrors.
+  float lo = s.glass ? -alpha_max : 0.0;
+  float step = (alpha_max - lo) / float(MNEE_GRID - 1);
+  vec2 rotation = vec2(cos(step), sin(step));  // the scan's directions by rotation, no trig
+  // Up to three brackets (a, g(a), b, g(b)), in variables rather than an array: llvmpipe keeps
+  // a dynamically indexed array in memory. At most three chains reach a point through a glass
+  // ball, one off a mirror; a fourth sign change (noise at a fold) is dropped.
+  vec4 bracket0 = vec4(0.0), bracket1 = vec4(0.0), bracket2 = vec4(0.0);
+  int found = 0;
+  vec2 dir = vec2(cos(lo), sin(lo));
+  Chain2D ca = mnee_chain_along(s.m, dir, s.glass, ior);
   float ga = mnee_residual(s.m, ca);
   for (int i = 1; i < MNEE_GRID; ++i) {
-    float b = -alpha_max + float(i) * step;
-    Chain2D cb = mnee_chain(s.m, b, s.glass, ior);
+    dir = vec2(dir.x * rotation.x - dir.y * rotation.y, dir.x * rotation.y + dir.y * rotation.x);
+    Chain2D cb = mnee_chain_along(s.m, dir, s.glass, ior);
     float gb = mnee_residual(s.m, cb);
     if (ca.valid && cb.valid && (ga < 0.0) != (gb < 0.0)) {
-      float root = mnee_refine(s.m, s.glass, ior, a, ga, b, gb);
-      if (root > -1e29) sum += mnee_root(s, root, h, m, x, n, wo, error_scale);
+      vec4 bracket = vec4(lo + float(i - 1) * step, ga, lo + float(i) * step, gb);
+      if (found == 0) bracket0 = bracket;
+      else if (found == 1) bracket1 = bracket;
+      else if (found == 2) bracket2 = bracket;
+      ++found;
     }
-    a = b;
     ga = gb;
     ca = cb;
   }
+  float h = 5e-3 * step;  // of the central difference in mnee_jacobian
+  vec3 sum = mnee_bracket(s, bracket0, h, m, x, n, wo, error_scale);
+  if (found > 1) sum += mnee_bracket(s, bracket1, h, m, x, n, wo, error_scale);
+  if (found > 2) sum += mnee_bracket(s, bracket2, h, m, x, n, wo, error_scale);
   return sum;
 }

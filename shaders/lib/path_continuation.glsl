@@ -26,6 +26,7 @@ struct PathState {
   // vertex at which MNEE ran; mnee_caster the sphere the chain is in.
   int mnee_chain;
   int mnee_caster;
+  bool mnee_spent;  // MNEE ran at an earlier vertex (it runs at the first non-delta one only)
 #endif
 };
 
@@ -38,7 +39,7 @@ const int MNEE_CHAIN_DONE = 3;    // then reflected off a caster, or refracted o
 
 PathState start_path(Ray ray) {
 #if defined(GLINT_MNEE)
-  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0, MNEE_CHAIN_NONE, -1);
+  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0, MNEE_CHAIN_NONE, -1, false);
 #else
   return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0);
 #endif
@@ -137,7 +138,11 @@ bool continue_path(inout PathState path) {
   }
 #endif
 #if defined(GLINT_MNEE)
-  bool mnee_ran = light_sampling && !delta && mnee_on();
+  // At the first non-delta vertex only: the caustics seen directly (or through smooth
+  // surfaces), where they are sharp; those seen after a diffuse bounce are blurred by it, and
+  // path tracing finds them well enough for their share (docs/DESIGN.md §3.10).
+  bool mnee_ran = light_sampling && !delta && !path.mnee_spent && mnee_on();
+  path.mnee_spent = path.mnee_spent || mnee_ran;
   if (mnee_ran) path.radiance += path.throughput * manifold_next_event(m, p, n, wo, hit.error_scale, path.bounces);
 #endif
   float u_lobe = sample_1d(bsdf_dimension(path.bounces));
