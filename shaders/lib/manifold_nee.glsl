@@ -162,11 +162,13 @@ vec3 mnee_emission(MneeLightPoint lp, GpuLight l, vec3 p1, vec3 n1, float error_
 }
 
 // The chain's throughput, as the path tracer weights it (lib/bsdf.glsl): a mirror's Schlick
-// Fresnel of its colour, or glass's (1 - F) at both interfaces times its colour at each (the
-// 1 / eta^2 of entering and the eta^2 of leaving cancel).
-vec3 mnee_throughput(SurfaceMaterial caster, vec3 dir0, vec3 n1, vec3 d_in, vec3 n2) {
+// Fresnel of its colour, glass's reflection F (weight 1, chosen with probability F), or glass's
+// (1 - F) at both interfaces times its colour at each (the 1 / eta^2 of entering and the eta^2
+// of leaving cancel).
+vec3 mnee_throughput(SurfaceMaterial caster, bool refracts, vec3 dir0, vec3 n1, vec3 d_in, vec3 n2) {
   float cos1 = -dot(dir0, n1);
   if (caster.type == MATERIAL_REFLECTIVE) return fresnel_schlick(caster.color, cos1);
+  if (!refracts) return vec3(fresnel_dielectric(cos1, caster.ior));
   float t = (1.0 - fresnel_dielectric(cos1, caster.ior)) * (1.0 - fresnel_dielectric(dot(d_in, n2), 1.0 / caster.ior));
   return t * caster.color * caster.color;
 }
@@ -178,7 +180,7 @@ struct MneeSetup {
   GpuLight light;
   int caster;  // sphere index
   SurfaceMaterial caster_material;
-  bool glass;
+  bool glass;  // the chain refracts through the ball (else it reflects off it)
   float scale;  // 1 / (pdf of y, of the light, of the caster)
 };
 
@@ -206,7 +208,7 @@ vec3 mnee_root(MneeSetup s, float alpha, float h, SurfaceMaterial m, vec3 x, vec
   if (max_component(le) <= 0.0) return vec3(0.0);
   vec3 dir0 = cos(alpha) * s.m.axis + sin(alpha) * s.m.side;
   float cos_y = abs(dot(s.lp.normal, dir0));
-  vec3 t = mnee_throughput(s.caster_material, dir0, n1, d_in, n_last);
+  vec3 t = mnee_throughput(s.caster_material, s.glass, dir0, n1, d_in, n_last);
   float jacobian = mnee_jacobian(s.m, alpha, h, c, n, s.glass, s.caster_material.ior);
   return (f / cos_x) * le * t * (cos_y * jacobian * s.scale);
 }
@@ -249,15 +251,18 @@ bool mnee_setup(vec3 x, int bounce, out MneeSetup s) {
   float u_caster = sample_1d(dim + 1u);
   vec2 u_point = sample_2d(dim);
   s.light = light_at(pick_light(u_light));
-  s.caster = u_casters[min(int(u_caster * float(u_caster_count)), u_caster_count - 1)];
+  float pick = u_caster * float(u_caster_count);
+  s.caster = u_casters[min(int(pick), u_caster_count - 1)];
   if (!mnee_light_supported(s.light)) return false;
   s.lp = mnee_light_point(s.light, u_point);
   GpuSphere sphere = sphere_at(s.caster);
   GpuMaterial gm = material_at(sphere.material.x);
   s.caster_material = surface_material(gm, vec4(1.0), vec2(0.0));
-  s.glass = s.caster_material.type == MATERIAL_REFRACTIVE;
-  // The path tracer reaches the light at bounce + 2 (mirror) or + 3 (glass), after scattering at
-  // bounce + 1 (and + 2), which max_bounces must allow.
+  // A glass ball's chain refracts or (with probability 1/2, the rest of u_caster) reflects.
+  bool refractive = s.caster_material.type == MATERIAL_REFRACTIVE;
+  s.glass = refractive && fract(pick) < 0.5;
+  // The path tracer reaches the light at bounce + 2 (reflection) or + 3 (refraction), after
+  // scattering at bounce + 1 (and + 2), which max_bounces must allow.
   if (bounce + (s.glass ? 2 : 1) >= u_max_bounces) return false;
   vec3 c = sphere.center_radius.xyz;
   float r = sphere.center_radius.w;
@@ -274,7 +279,7 @@ bool mnee_setup(vec3 x, int bounce, out MneeSetup s) {
   if (!(rho > 1e-6 * s.m.dist)) return false;  // x on the axis (a set of measure zero)
   s.m.side = perp / rho;
   s.m.x2 = vec2(along, rho);
-  s.scale = s.lp.area * float(u_caster_count) / s.light.select.x;
+  s.scale = s.lp.area * float(u_caster_count) * (refractive ? 2.0 : 1.0) / s.light.select.x;
   return true;
 }
 

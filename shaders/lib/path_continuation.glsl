@@ -26,7 +26,7 @@ struct PathState {
   // vertex at which MNEE ran; mnee_caster the sphere the chain is in.
   int mnee_chain;
   int mnee_caster;
-  bool mnee_spent;  // MNEE ran at an earlier vertex (it runs at the first non-delta one only)
+  int mnee_vertices;  // vertices at which MNEE ran (at most MNEE_VERTICES, the first non-delta ones)
 #endif
 };
 
@@ -35,11 +35,12 @@ const int MNEE_CHAIN_NONE = 0;
 const int MNEE_CHAIN_FROM_X = 1;  // the BSDF ray of a vertex at which MNEE ran
 const int MNEE_CHAIN_INSIDE = 2;  // then refracted into caster mnee_caster
 const int MNEE_CHAIN_DONE = 3;    // then reflected off a caster, or refracted out of it
+const int MNEE_VERTICES = 2;
 #endif
 
 PathState start_path(Ray ray) {
 #if defined(GLINT_MNEE)
-  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0, MNEE_CHAIN_NONE, -1, false);
+  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0, MNEE_CHAIN_NONE, -1, 0);
 #else
   return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0);
 #endif
@@ -47,7 +48,7 @@ PathState start_path(Ray ray) {
 
 #if defined(GLINT_MNEE)
 // The chain state after scattering at `hit` into wi: MNEE counts exactly the paths that leave
-// a vertex where it ran, reflect once off a caster from outside, or refract into a caster and
+// a vertex where it ran, reflect once off a caster from outside (mirror or glass), or refract into a caster and
 // straight out of the same one, and then meet an emitter it samples (lib/manifold_nee.glsl);
 // the path tracer gives those weight 0. Anything else on the way (another surface, an internal
 // reflection, a cut-out passed) leaves the chain.
@@ -56,8 +57,7 @@ int mnee_chain_state(int state, inout int caster, bool mnee_ran, SceneHit hit, v
   bool outside = dot(hit.normal, wo) > 0.0;  // a sphere's normal points out
   bool leaves = dot(hit.normal, wi) > 0.0;
   if (state == MNEE_CHAIN_FROM_X && outside && mnee_is_caster(hit.ref)) {
-    bool glass = int(material_at(hit.material).color.a) == MATERIAL_REFRACTIVE;
-    if (leaves) return glass ? MNEE_CHAIN_NONE : MNEE_CHAIN_DONE;  // glass's reflection is not MNEE's
+    if (leaves) return MNEE_CHAIN_DONE;  // a reflection, off a mirror or glass
     caster = hit.ref;
     return MNEE_CHAIN_INSIDE;
   }
@@ -138,11 +138,11 @@ bool continue_path(inout PathState path) {
   }
 #endif
 #if defined(GLINT_MNEE)
-  // At the first non-delta vertex only: the caustics seen directly (or through smooth
-  // surfaces), where they are sharp; those seen after a diffuse bounce are blurred by it, and
-  // path tracing finds them well enough for their share (docs/DESIGN.md §3.10).
-  bool mnee_ran = light_sampling && !delta && !path.mnee_spent && mnee_on();
-  path.mnee_spent = path.mnee_spent || mnee_ran;
+  // At the first MNEE_VERTICES non-delta vertices: the caustics seen directly (or through
+  // smooth surfaces) and the light they throw on other surfaces; deeper ones are left to path
+  // tracing (docs/DESIGN.md §3.10).
+  bool mnee_ran = light_sampling && !delta && path.mnee_vertices < MNEE_VERTICES && mnee_on();
+  if (mnee_ran) ++path.mnee_vertices;
   if (mnee_ran) path.radiance += path.throughput * manifold_next_event(m, p, n, wo, hit.error_scale, path.bounces);
 #endif
   float u_lobe = sample_1d(bsdf_dimension(path.bounces));

@@ -60,12 +60,12 @@ Scene caustic_scene(Ball ball, bool quad_lamp) {
   return s;
 }
 
-// A wall lit by a lamp only through a mirror ball: two black shades, one on each side of the
+// A wall lit by a lamp only through a mirror ball (or a glass one, whose reflection it sees): two black shades, one on each side of the
 // lamp, hide it from the wall and from the camera but not from the ball beside it, whose left side
 // reflects its light onto the wall. Nearly all of the wall's light is the mirror's caustic
 // (E D S L), so that MNEE counting it twice, or not at all, changes the image's mean by about
 // half.
-Scene mirror_caustic_on_a_wall() {
+Scene mirror_caustic_on_a_wall(bool glass = false) {
   Scene s = test::empty_scene();
   s.camera.position = {0, 0.5f, 3.5f};
   s.camera.target = {0, 0.5f, -1.5f};
@@ -79,7 +79,9 @@ Scene mirror_caustic_on_a_wall() {
   for (float z : {-0.15f, 0.15f})
     s.quads.push_back({.material = "shade", .corners = {glm::vec3(-1.1f, 0.2f, z), glm::vec3(-0.5f, 0.2f, z),
                                                         glm::vec3(-1.1f, 0.8f, z), glm::vec3(-0.5f, 0.8f, z)}});
-  s.spheres.push_back({.center = {0, 0.5f, 0}, .radius = 0.4f, .material = "mirror"});
+  // Glass of a high index reflects a third of the light at normal incidence, more at grazing.
+  s.materials.push_back({.name = "glass", .type = MaterialType::refractive, .color = {1, 1, 1}, .ior = 4.0f});
+  s.spheres.push_back({.center = {0, 0.5f, 0}, .radius = 0.4f, .material = glass ? "glass" : "mirror"});
   s.spheres.push_back({.center = {-0.8f, 0.5f, 0}, .radius = 0.12f, .material = "lamp"});
   return s;
 }
@@ -196,6 +198,10 @@ TEST(ManifoldNee, MirrorCausticAloneConvergesToThePathTracersImage) {
   const Scene s = mirror_caustic_on_a_wall();
   expect_same_image(estimate(s, true, TraceBackend::fragment, 512, 64, kSeeds, on_the_wall),
                     estimate(s, false, TraceBackend::fragment, 2048, 64, kSeeds, on_the_wall), "mirror caustic on a wall");
+  const Scene g = mirror_caustic_on_a_wall(true);
+  expect_same_image(estimate(g, true, TraceBackend::fragment, 512, 64, kSeeds, on_the_wall),
+                    estimate(g, false, TraceBackend::fragment, 2048, 64, kSeeds, on_the_wall),
+                    "glass's reflected caustic on a wall");
 }
 
 TEST(ManifoldNee, TwoBallsAndAQuadLampConvergeToThePathTracersImage) {
