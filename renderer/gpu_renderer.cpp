@@ -9,6 +9,7 @@
 #include "renderer/gpu_scene.h"
 #include "renderer/llvmpipe_threads.h"
 #include "renderer/loop_budget.h"
+#include "renderer/mnee_casters.h"
 #include "renderer/program_worker.h"
 #include "renderer/scene_validation.h"
 
@@ -120,7 +121,8 @@ void GpuRenderer::update_features(const Scene& scene, const SceneDigests& d, boo
   if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
       d.environment != digests_.environment)
     features_ = scene_features(scene);
-  features_.mnee = features_.mnee && renderer_options_.mnee;
+  features_.mnee = features_.mnee && (renderer_options_.mnee == MneeChoice::always ||
+                                      (renderer_options_.mnee == MneeChoice::automatic && mnee_pays_off(scene)));
   features_.thin_lens = scene.camera.aperture_radius > 0;
   features_.loop_traversal = !use_bvh_;
   features_.bvh_traversal = use_bvh_;

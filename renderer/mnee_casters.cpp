@@ -42,6 +42,27 @@ std::vector<int> mnee_casters(const Scene& scene) {
   return out;
 }
 
+bool mnee_pays_off(const Scene& scene) {
+  if (!scene_needs_mnee(scene)) return false;
+  double largest_cross_section = 0;
+  for (int i : mnee_casters(scene)) {
+    const double r = scene.spheres[static_cast<size_t>(i)].radius;
+    largest_cross_section = std::max(largest_cross_section, 3.14159265358979 * r * r);
+  }
+  double smallest_lamp = -1;
+  auto lamp = [&](const Material* m, double area) {
+    if (m && emits(*m) && area > 0 && (smallest_lamp < 0 || area < smallest_lamp)) smallest_lamp = area;
+  };
+  for (const Sphere& s : scene.spheres)
+    lamp(material_of(scene, s.material), 4.0 * 3.14159265358979 * double(s.radius) * s.radius);
+  for (const Quad& q : scene.quads) {
+    if (!quad_is_parallelogram(q.corners)) continue;
+    const glm::dvec3 p0(q.corners[0]), p1(q.corners[1]), p2(q.corners[2]);
+    lamp(material_of(scene, q.material), glm::length(glm::cross(p1 - p0, p2 - p0)));
+  }
+  return smallest_lamp >= 0 && smallest_lamp <= kMneeSmallLampShare * largest_cross_section;
+}
+
 bool scene_needs_mnee(const Scene& scene) {
   if (mnee_casters(scene).empty()) return false;
   bool light = false, receiver = false;

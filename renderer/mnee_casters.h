@@ -23,4 +23,14 @@ std::vector<int> mnee_casters(const Scene& scene);
 // quad) and a surface that is not delta (where next-event estimation runs).
 bool scene_needs_mnee(const Scene& scene);
 
+// A lamp MNEE samples is small against a caster when its area is at most this share of the
+// caster's cross-section (pi r^2). Below it path tracing rarely finds the lamp through the
+// ball and MNEE pays for its cost; above it, it did not at equal time (docs/DESIGN.md §3.10:
+// lamp/cross-section 0.02 gained, 0.43 and 0.53 lost; the threshold lies between, not tuned).
+inline constexpr double kMneeSmallLampShare = 0.1;
+
+// True when the scene needs MNEE and has a lamp small against a caster (kMneeSmallLampShare):
+// the renderer's automatic choice (GpuRendererOptions::mnee).
+bool mnee_pays_off(const Scene& scene);
+
 }  // namespace glint

@@ -16,7 +16,8 @@
 const int MNEE_MAX_CASTERS = 8;  // renderer/mnee_casters.h, kMaxMneeCasters
 uniform int u_caster_count;      // casters: smooth mirror or glass spheres (sphere indices)
 uniform int u_casters[MNEE_MAX_CASTERS];
-// Grid points of the scan over alpha and secant steps per root (bench/reports/MNEE.md).
+// Grid points of the scan over alpha and secant steps per root (docs/DESIGN.md §3.10 measures
+// what a coarser grid misses).
 const int MNEE_GRID = 32;
 const int MNEE_REFINE_STEPS = 20;
 

@@ -116,6 +116,7 @@ Estimate estimate(const Scene& base, bool mnee, TraceBackend backend, int spp, i
   GpuRendererOptions options;
   options.backend = backend;
   options.force_generic_shader = !mnee;
+  options.mnee = MneeChoice::always;  // its lamps are large enough for the path tracer to converge
   GpuRenderer r(options);
   double sum = 0, sum2 = 0, caustic = 0, caustic2 = 0;
   Estimate e;
@@ -159,6 +160,14 @@ TEST(ManifoldNee, CausticScenesCompileItIn) {
   for (Ball ball : {Ball::glass, Ball::mirror, Ball::both})
     for (bool quad_lamp : {false, true}) EXPECT_TRUE(scene_needs_mnee(caustic_scene(ball, quad_lamp)));
   EXPECT_TRUE(scene_needs_mnee(mirror_caustic_on_a_wall()));
+  // The renderer's automatic choice: lamps small against the ball only.
+  EXPECT_FALSE(mnee_pays_off(caustic_scene(Ball::glass, false)));
+  Scene small_lamp = caustic_scene(Ball::glass, false);
+  small_lamp.spheres.back().radius = 0.03f;
+  EXPECT_TRUE(mnee_pays_off(small_lamp));
+  EXPECT_TRUE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/caustics.glint")));
+  EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/glass.glint")));
+  EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/projects/default.glint")));
   EXPECT_EQ(mnee_casters(caustic_scene(Ball::both, false)), (std::vector<int>{0, 1}));
 }
 
@@ -232,7 +241,9 @@ TEST(ManifoldNee, ComputeBackEndAndFewBouncesConvergeToThePathTracersImage) {
 TEST(ManifoldNee, MergedPartsEqualTheSingleRender) {
   test::ensure_gl_context();
   const Scene scene = caustic_scene(Ball::both, false);
-  GpuRenderer r;
+  GpuRendererOptions always;
+  always.mnee = MneeChoice::always;
+  GpuRenderer r(always);
   auto render = [&](SampleRange range) {
     RenderOptions options;
     options.first_sample = static_cast<uint32_t>(range.first);
