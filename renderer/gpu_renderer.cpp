@@ -61,9 +61,10 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   if (first_sync_ || d.radiance() != digests_.radiance() || options_ != synced_options_)
     result.accumulation_reset = true;
   if (result.accumulation_reset) {  // the aspect ratio may have changed
-    draw_split_ = draw_split(static_cast<long>(counts_.spheres) + counts_.quads, scene.render.max_bounces, use_bvh_);
+    draw_split_ = draw_split(static_cast<long>(counts_.spheres) + counts_.quads,
+                             loop_budget_bounces(scene.render.max_bounces, features_.mnee), use_bvh_);
     set_frame_uniforms(uniforms_, scene, options_,
-                       {counts_.lights, use_bvh_, llvmpipe_, origin_, film_.width(), film_.height()});
+                       {counts_.lights, use_bvh_, llvmpipe_, origin_, film_.width(), film_.height(), features_.mnee});
     bvh_.set_max_steps(uniforms_.bvh_max_steps);
   }
   if (first_sync_ || d.display != digests_.display) {

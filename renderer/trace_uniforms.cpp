@@ -21,7 +21,7 @@ void set_frame_uniforms(TraceUniforms& u, const Scene& scene, const RenderOption
   u.use_bvh = in.use_bvh ? 1 : 0;
   // The step cap matters on llvmpipe only (its loop limit); elsewhere it is a generous bound
   // that only a pathological tree would reach. Draws are split the same way everywhere.
-  u.bvh_max_steps = in.llvmpipe ? bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces) : kMaxBvhSteps;
+  u.bvh_max_steps = in.llvmpipe ? bvh_max_steps(kBvhMaxLeafSize, loop_budget_bounces(scene.render.max_bounces, in.mnee)) : kMaxBvhSteps;
   u.light_count = options.light_sampling ? in.light_count : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are
   // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted

@@ -48,6 +48,7 @@ struct FrameInputs {
   glm::dvec3 origin{0};   // render_origin of the packed scene
   int width = 0;          // of the film (the camera's aspect ratio)
   int height = 0;
+  bool mnee = false;      // the program has manifold next-event estimation (more loops a sample)
 };
 
 // Sets every uniform of `u` but the counts and the environment tables' size, which the uploads
