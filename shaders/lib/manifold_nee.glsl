@@ -1,7 +1,7 @@
 // Manifold next-event estimation (MNEE; Hanika, Droske and Fascione 2015, "Manifold Next Event
 // Estimation") for chains through one smooth sphere: light that leaves a point y of an emitter,
-// reflects off a smooth mirror ball or refracts through a smooth glass ball (in, straight
-// through, out) and reaches a non-delta vertex x (caustics, E D S L and E D S S L). The chains
+// reflects off a smooth mirror or glass ball or refracts through a smooth glass ball (in,
+// straight through, out) and reaches a non-delta vertex x (caustics, E D S L and E D S S L). The chains
 // are found by symmetry (docs/DESIGN.md §3.10): {y, the sphere's centre, its radius} is
 // symmetric about the axis through y and the centre, so every chain from y to x lies in the
 // plane through y, the centre and x and is a ray from y at a signed angle alpha from the axis.
