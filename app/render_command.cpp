@@ -44,6 +44,7 @@ const char* const kUsage =
     "usage: glint render PROJECT.glint -o OUT.{png,hdr,exr} [--spp N | --time SECONDS |\n"
     "                    --samples A:B] [--target-error E] [--adaptive]\n"
     "                    [--width W] [--height H] [--seed S] [--generic-shader]\n"
+    "                    [--mnee | --no-mnee]\n"
     "                    [--reference REF.exr --log OUT.csv]\n"
     "                    [--sampler pcg|sobol] [--no-light-sampling] [--no-env-sampling]\n"
     "                    [--no-roulette] [--clamp L] [--accel auto|loop|bvh]\n"
@@ -80,6 +81,9 @@ const char* const kUsage =
     "  --seed S           sample sequence (default: the project's render.seed)\n"
     "  --generic-shader   trace with the program that has every feature compiled in, not\n"
     "                     the one specialised to the scene (same image; for measuring)\n"
+    "  --mnee, --no-mnee  manifold next-event estimation of caustics through smooth spheres in\n"
+    "                     every scene that has them, or in none (default: where a lamp is small\n"
+    "                     against the ball); the same image in expectation, for measuring\n"
     "  --reference REF    linear .exr or .hdr image of the same size to measure the error\n"
     "                     against (give it with --log)\n"
     "  --log OUT.csv      convergence log against --reference: one row at 1, 2, 4, 8, ...\n"
@@ -160,6 +164,7 @@ struct Options {
   std::string log;
   RenderOptions estimator;
   bool generic_shader = false;
+  MneeChoice mnee = MneeChoice::automatic;
   std::optional<TraceBackend> backend;  // nullopt: the automatic choice
   WorkGroup work_group;
   RenderOutputOptions output_options;  // --denoise, --denoise-quality, --aovs
@@ -211,6 +216,8 @@ const std::pair<const char*, Flag> kFlags[] = {
     {"--no-env-sampling", [](Options& o) { o.estimator.environment_sampling = false; }},
     {"--no-roulette", [](Options& o) { o.estimator.russian_roulette = false; }},
     {"--generic-shader", [](Options& o) { o.generic_shader = true; }},
+    {"--mnee", [](Options& o) { o.mnee = MneeChoice::always; }},
+    {"--no-mnee", [](Options& o) { o.mnee = MneeChoice::never; }},
     {"--denoise", [](Options& o) { o.output_options.denoise = true; }},
     {"--aovs", [](Options& o) { o.output_options.aovs = true; }},
     {"--alpha", [](Options& o) {
@@ -491,6 +498,7 @@ std::unique_ptr<GpuRenderer> prepare_renderer(const Options& o, const Scene& sce
                                               int height) {
   GpuRendererOptions options;
   options.force_generic_shader = o.generic_shader;
+  options.mnee = o.mnee;
   options.work_group = o.work_group;
   options.backend = backend;
   auto renderer = std::make_unique<GpuRenderer>(options);

@@ -9,6 +9,7 @@
 #include "renderer/gpu_scene.h"
 #include "renderer/llvmpipe_threads.h"
 #include "renderer/loop_budget.h"
+#include "renderer/mnee_casters.h"
 #include "renderer/program_worker.h"
 #include "renderer/scene_validation.h"
 
@@ -60,9 +61,10 @@ SyncResult GpuRenderer::sync(const Scene& scene, int width, int height) {
   if (first_sync_ || d.radiance() != digests_.radiance() || options_ != synced_options_)
     result.accumulation_reset = true;
   if (result.accumulation_reset) {  // the aspect ratio may have changed
-    draw_split_ = draw_split(static_cast<long>(counts_.spheres) + counts_.quads, scene.render.max_bounces, use_bvh_);
+    draw_split_ = draw_split(static_cast<long>(counts_.spheres) + counts_.quads,
+                             loop_budget_bounces(scene.render.max_bounces, features_.mnee), use_bvh_);
     set_frame_uniforms(uniforms_, scene, options_,
-                       {counts_.lights, use_bvh_, llvmpipe_, origin_, film_.width(), film_.height()});
+                       {counts_.lights, use_bvh_, llvmpipe_, origin_, film_.width(), film_.height(), features_.mnee});
     bvh_.set_max_steps(uniforms_.bvh_max_steps);
   }
   if (first_sync_ || d.display != digests_.display) {
@@ -95,6 +97,8 @@ void GpuRenderer::upload_changes(const Scene& scene, const SceneDigests& d) {
     counts_ = upload_geometry(tables_, packed);
     uniforms_.sphere_count = counts_.spheres;
     uniforms_.quad_count = counts_.quads;
+    uniforms_.caster_count = static_cast<int>(packed.casters.size());
+    std::copy(packed.casters.begin(), packed.casters.end(), uniforms_.casters.begin());
     bvh_.invalidate();  // refitted or rebuilt below if the BVH is used
     origin_ = origin;
   }
@@ -118,6 +122,8 @@ void GpuRenderer::update_features(const Scene& scene, const SceneDigests& d, boo
   if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
       d.environment != digests_.environment)
     features_ = scene_features(scene);
+  features_.mnee = features_.mnee && (renderer_options_.mnee == MneeChoice::always ||
+                                      (renderer_options_.mnee == MneeChoice::automatic && mnee_pays_off(scene)));
   features_.thin_lens = scene.camera.aperture_radius > 0;
   features_.loop_traversal = !use_bvh_;
   features_.bvh_traversal = use_bvh_;

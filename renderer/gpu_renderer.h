@@ -55,12 +55,18 @@ struct SyncResult {
 class ProgramWorker;
 struct ProgramJob;
 
+enum class MneeChoice { automatic, always, never };
+
 struct GpuRendererOptions {
   // Which entry point traces (same image; renderer/backend_choice.h picks the faster one).
   TraceBackend backend = TraceBackend::fragment;
   WorkGroup work_group;  // of the compute shader
   // Always trace with the generic program (every feature compiled in): for measurements.
   bool force_generic_shader = false;
+  // Manifold next-event estimation (renderer/mnee_casters.h): automatic, in the programs of
+  // scenes where it pays off (mnee_pays_off); always, in those of every scene that needs it;
+  // never, the path tracer alone. The same image in expectation either way.
+  MneeChoice mnee = MneeChoice::automatic;
   // Where specialised programs are built (renderer/program_worker.h): off the calling thread,
   // in a shared context, with the driver's first-draw compile done there too. Without one they
   // are built in this context with GL_KHR_parallel_shader_compile where the driver has it.

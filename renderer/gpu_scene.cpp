@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/mnee_casters.h"
 #include "renderer/quad_shape.h"
 #include "renderer/texture_slots.h"
 
@@ -113,6 +114,8 @@ PackedScene pack_scene(const Scene& scene, const glm::dvec3& origin) {
     packed.quads.push_back(g);
   }
   add_lights(scene, packed);
+  packed.casters = mnee_casters(scene);
+  for (int i : packed.casters) packed.spheres[static_cast<size_t>(i)].material.z = 1;
   return packed;
 }
 

@@ -15,7 +15,7 @@ namespace glint {
 
 struct GpuSphere {
   glm::vec4 center_radius;
-  glm::ivec4 material;
+  glm::ivec4 material;  // x: material index, y: light index or -1, z: 1 for an MNEE caster
 };
 
 struct GpuQuad {
@@ -53,6 +53,7 @@ struct PackedScene {
   std::vector<GpuMaterial> materials;
   std::vector<TextureLayer> layers;
   std::vector<GpuLight> lights;  // material.y of a sphere or quad is its light index, else -1
+  std::vector<int> casters;      // spheres of manifold next-event estimation (mnee_casters)
 };
 
 // Estimated power of an emitter: luminance of `emission` times area (textures ignored: the

@@ -45,6 +45,14 @@ inline long bvh_loop_iterations_per_sample(int steps, int leaf_size, int max_bou
   return (max_bounces + 2L) * (3 * (bvh_query_iterations(steps, leaf_size) + 2) + 64);
 }
 
+// Manifold next-event estimation (shaders/lib/manifold_nee.glsl) counted as this many more
+// bounces: it runs at two vertices of a path, each at most 31 scan and 3 x 20 refinement
+// iterations, a light pick, and 3 x 3 closest-hit queries for up to three chains. A bounce
+// above counts 3 queries and 64 other iterations: 18 queries are 6 bounces' worth, the
+// 2 x (91 + the light pick's search) other iterations fewer than 4 bounces' 256.
+constexpr int kMneeLoopBounces = 10;
+inline int loop_budget_bounces(int max_bounces, bool mnee) { return max_bounces + (mnee ? kMneeLoopBounces : 0); }
+
 // The cap: the most steps that keep one sample (a draw of one sample) within the limit, so that
 // on llvmpipe a traversal stops at the cap (and says so) before the driver would stop it
 // silently. Rays in a binned-SAH tree visit tens of nodes (unit.Bvh.SameHitAsTheLoop: 8 to 29 on

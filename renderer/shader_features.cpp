@@ -6,6 +6,7 @@
 #include "renderer/image.h"
 #include "renderer/material_types.h"
 #include "renderer/loop_shapes.h"
+#include "renderer/mnee_casters.h"
 #include "renderer/quad_shape.h"
 
 namespace glint {
@@ -68,6 +69,7 @@ ShaderFeatures scene_features(const Scene& scene) {
     return emits && !quad_is_parallelogram(q.corners);
   });
   f.thin_lens = scene.camera.aperture_radius > 0;
+  f.mnee = scene_needs_mnee(scene);
   return f;
 }
 
@@ -114,6 +116,7 @@ std::string shader_defines(const ShaderFeatures& f) {
   define(f.has_general_quad_lights, "GLINT_NO_GENERAL_QUAD_LIGHTS");
   define(f.pcg_sampler, "GLINT_NO_PCG_SAMPLER");
   define(f.sobol_sampler, "GLINT_NO_SOBOL_SAMPLER");
+  if (f.mnee) out += "#define GLINT_MNEE\n";
   if (f.loop_spheres >= 0) {
     out += "#define GLINT_LOOP_SPHERES " + std::to_string(f.loop_spheres) + "\n";
     out += "#define GLINT_LOOP_QUADS " + std::to_string(f.loop_quads) + "\n";

@@ -50,6 +50,12 @@ struct ShaderFeatures {
   // tables. Set by with_loop_counts, for scenes that the loop traverses; the two go together.
   int loop_spheres = -1;
   int loop_quads = -1;
+  // Manifold next-event estimation of caustics through smooth spheres (shaders/lib/
+  // manifold_nee.glsl, `#define GLINT_MNEE`), for scenes that scene_needs_mnee
+  // (renderer/mnee_casters.h). Unlike the others it adds a strategy rather than code for a
+  // present feature: absent from the generic program, and a program with or without it
+  // renders any scene (each is unbiased), so `covers` ignores it.
+  bool mnee = false;
 
   bool uses(MaterialType t) const { return (material_types >> static_cast<int>(t)) & 1u; }
   bool operator==(const ShaderFeatures&) const = default;

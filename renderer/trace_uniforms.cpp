@@ -1,5 +1,7 @@
 #include "renderer/trace_uniforms.h"
 
+#include <string>
+
 #include "renderer/bvh.h"
 #include "renderer/camera_frame.h"
 #include "renderer/gl_program.h"
@@ -19,7 +21,7 @@ void set_frame_uniforms(TraceUniforms& u, const Scene& scene, const RenderOption
   u.use_bvh = in.use_bvh ? 1 : 0;
   // The step cap matters on llvmpipe only (its loop limit); elsewhere it is a generous bound
   // that only a pathological tree would reach. Draws are split the same way everywhere.
-  u.bvh_max_steps = in.llvmpipe ? bvh_max_steps(kBvhMaxLeafSize, scene.render.max_bounces) : kMaxBvhSteps;
+  u.bvh_max_steps = in.llvmpipe ? bvh_max_steps(kBvhMaxLeafSize, loop_budget_bounces(scene.render.max_bounces, in.mnee)) : kMaxBvhSteps;
   u.light_count = options.light_sampling ? in.light_count : 0;
   // Shadow rays go to an environment map (importance-sampled) half of the time when there are
   // also emitting shapes; a constant environment is left to BSDF sampling (cosine-weighted
@@ -70,6 +72,9 @@ void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_first_sample", u.first_sample);
   p.set("u_sphere_count", u.sphere_count);
   p.set("u_quad_count", u.quad_count);
+  p.set("u_caster_count", u.caster_count);
+  for (int k = 0; k < u.caster_count; ++k)
+    p.set(("u_casters[" + std::to_string(k) + "]").c_str(), u.casters[static_cast<size_t>(k)]);
   p.set("u_use_bvh", u.use_bvh);
   p.set("u_bvh_max_steps", u.bvh_max_steps);
   p.set("u_cam_origin", u.cam_origin);

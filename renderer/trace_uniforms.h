@@ -3,8 +3,11 @@
 // get them before every pass, since programs do not share uniform state.
 #pragma once
 
+#include <array>
+
 #include <glm/glm.hpp>
 
+#include "renderer/mnee_casters.h"
 #include "renderer/render_options.h"
 #include "renderer/scene.h"
 
@@ -29,6 +32,8 @@ struct TraceUniforms {
   unsigned first_sample = 0;
   int sphere_count = 0;  // set by the geometry's upload, as quad_count
   int quad_count = 0;
+  int caster_count = 0;  // set by the geometry's upload, as casters (renderer/mnee_casters.h)
+  std::array<int, kMaxMneeCasters> casters{};
   int use_bvh = 0;
   int bvh_max_steps = 0;
   glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};
@@ -43,6 +48,7 @@ struct FrameInputs {
   glm::dvec3 origin{0};   // render_origin of the packed scene
   int width = 0;          // of the film (the camera's aspect ratio)
   int height = 0;
+  bool mnee = false;      // the program has manifold next-event estimation (more loops a sample)
 };
 
 // Sets every uniform of `u` but the counts and the environment tables' size, which the uploads

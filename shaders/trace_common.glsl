@@ -39,5 +39,8 @@
 #include "lib/scene_intersection.glsl"
 #include "lib/surface_material.glsl"
 #include "lib/next_event_estimation.glsl"
+#if defined(GLINT_MNEE)  // scenes with caustics through smooth spheres (renderer/shader_features.h)
+#include "lib/manifold_nee.glsl"
+#endif
 #include "lib/path_continuation.glsl"
 #include "lib/sample_accumulation.glsl"

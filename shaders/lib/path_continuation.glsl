@@ -20,11 +20,51 @@ struct PathState {
   // (lib/dielectric.glsl), which the roulette undoes, so that a path inside glass is not killed
   // for a scale it loses again on the way out (pbrt-v4's etaScale; Mitsuba 3 does the same).
   float eta_scale;
+#if defined(GLINT_MNEE)
+  // Where the path stands in manifold next-event estimation's share of path space
+  // (mnee_chain_state): MNEE_CHAIN_NONE outside it, else the state of the chain since the last
+  // vertex at which MNEE ran; mnee_caster the sphere the chain is in.
+  int mnee_chain;
+  int mnee_caster;
+  int mnee_vertices;  // vertices at which MNEE ran (at most MNEE_VERTICES, the first non-delta ones)
+#endif
 };
 
+#if defined(GLINT_MNEE)
+const int MNEE_CHAIN_NONE = 0;
+const int MNEE_CHAIN_FROM_X = 1;  // the BSDF ray of a vertex at which MNEE ran
+const int MNEE_CHAIN_INSIDE = 2;  // then refracted into caster mnee_caster
+const int MNEE_CHAIN_DONE = 3;    // then reflected off a caster, or refracted out of it
+const int MNEE_VERTICES = 2;
+#endif
+
 PathState start_path(Ray ray) {
+#if defined(GLINT_MNEE)
+  return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0, MNEE_CHAIN_NONE, -1, 0);
+#else
   return PathState(ray, vec3(0.0), vec3(1.0), 0, 0, ray.origin, 0.0, true, 1.0);
+#endif
 }
+
+#if defined(GLINT_MNEE)
+// The chain state after scattering at `hit` into wi: MNEE counts exactly the paths that leave
+// a vertex where it ran, reflect once off a caster from outside (mirror or glass), or refract into a caster and
+// straight out of the same one, and then meet an emitter it samples (lib/manifold_nee.glsl);
+// the path tracer gives those weight 0. Anything else on the way (another surface, an internal
+// reflection, a cut-out passed) leaves the chain.
+int mnee_chain_state(int state, inout int caster, bool mnee_ran, SceneHit hit, vec3 wo, vec3 wi) {
+  if (mnee_ran) return MNEE_CHAIN_FROM_X;
+  bool outside = dot(hit.normal, wo) > 0.0;  // a sphere's normal points out
+  bool leaves = dot(hit.normal, wi) > 0.0;
+  if (state == MNEE_CHAIN_FROM_X && outside && mnee_is_caster(hit.ref)) {
+    if (leaves) return MNEE_CHAIN_DONE;  // a reflection, off a mirror or glass
+    caster = hit.ref;
+    return MNEE_CHAIN_INSIDE;
+  }
+  if (state == MNEE_CHAIN_INSIDE && hit.ref == caster && !outside && leaves) return MNEE_CHAIN_DONE;
+  return MNEE_CHAIN_NONE;
+}
+#endif
 
 // Whether next-event estimation has anything to sample: emitting shapes or an environment map.
 bool light_sampling_on() {
@@ -65,6 +105,9 @@ bool continue_path(inout PathState path) {
     // Not a bounce: the ray continues unchanged past the surface.
     path.ray.origin = offset_surface_point(p, -n, hit.error_scale);
     ++path.passes;
+#if defined(GLINT_MNEE)
+    path.mnee_chain = MNEE_CHAIN_NONE;
+#endif
     return true;
   }
 #endif
@@ -75,6 +118,10 @@ bool continue_path(inout PathState path) {
   if (hit.light >= 0 && !path.last_delta && u_light_count > 0) {
     w = power_heuristic(path.last_pdf, light_pdf(hit.light, path.last_p, p));
   }
+#if defined(GLINT_MNEE)
+  // A caustic chain that manifold next-event estimation counts.
+  if (path.mnee_chain == MNEE_CHAIN_DONE && hit.light >= 0 && mnee_light_supported(light_at(hit.light))) w = 0.0;
+#endif
   path.radiance += path.throughput * material_emission(gm, hit.uv) * w;
 #endif
   if (path.bounces >= u_max_bounces) return false;
@@ -90,10 +137,21 @@ bool continue_path(inout PathState path) {
     path.radiance += path.throughput * direct_light(m, p, n, wo, hit.error_scale, path.bounces);
   }
 #endif
+#if defined(GLINT_MNEE)
+  // At the first MNEE_VERTICES non-delta vertices: the caustics seen directly (or through
+  // smooth surfaces) and the light they throw on other surfaces; deeper ones are left to path
+  // tracing (docs/DESIGN.md §3.10).
+  bool mnee_ran = light_sampling && !delta && path.mnee_vertices < MNEE_VERTICES && mnee_on();
+  if (mnee_ran) ++path.mnee_vertices;
+  if (mnee_ran) path.radiance += path.throughput * manifold_next_event(m, p, n, wo, hit.error_scale, path.bounces);
+#endif
   float u_lobe = sample_1d(bsdf_dimension(path.bounces));
   vec2 u = sample_2d(bsdf_dimension(path.bounces));
   BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
   if (!s.valid) return false;
+#if defined(GLINT_MNEE)
+  path.mnee_chain = mnee_chain_state(path.mnee_chain, path.mnee_caster, mnee_ran, hit, wo, s.wi);
+#endif
   path.throughput *= s.weight;
   if (max_component(path.throughput) <= 0.0) return false;
   // Smooth thin glass passing a ray straight on is not a new vertex for MIS: the light it

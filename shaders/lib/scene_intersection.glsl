@@ -12,6 +12,7 @@ struct SceneHit {
   vec2 uv;
   int material;
   int light;  // index into lights[] when the shape emits, else -1
+  int ref;    // the primitive (PrimitiveHit::ref: spheres, then quads), -1 for none
 };
 
 // The scene as shaders/lib/bvh.glsl reads it.
@@ -70,10 +71,11 @@ PrimitiveHit closest_primitive(Ray ray) {
 }
 
 SceneHit intersect_scene(Ray ray) {
-  SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1, -1);
+  SceneHit hit = SceneHit(1e30, vec3(0.0), 0.0, vec3(0.0), vec2(0.0), -1, -1, -1);
   PrimitiveHit closest = closest_primitive(ray);
   if (closest.ref < 0) return hit;
   hit.t = closest.t;
+  hit.ref = closest.ref;
 #if !defined(GLINT_NO_QUADS)
 #if !defined(GLINT_NO_SPHERES)
   if (closest.ref >= u_sphere_count)

@@ -28,6 +28,14 @@ float rand() {
 const uint DIMENSIONS_PER_BOUNCE = 2u;
 uint light_dimension(int bounce) { return 2u + DIMENSIONS_PER_BOUNCE * uint(bounce); }
 uint bsdf_dimension(int bounce) { return light_dimension(bounce) + 1u; }
+#if defined(GLINT_MNEE)
+// Manifold next-event estimation at bounce b (lib/manifold_nee.glsl): 1-D dimension d picks the
+// light, 2-D dimension d the point on it, 1-D dimension d + 1 the caster; in a range of their
+// own (padded dimensions are hashed, any index is as good), so that adding MNEE leaves the
+// other decisions' dimensions where they were.
+const uint MNEE_DIMENSION_BASE = 0x10000u;
+uint mnee_dimension(int bounce) { return MNEE_DIMENSION_BASE + 2u * uint(bounce); }
+#endif
 float sample_1d(uint dimension) {
   if (u_sobol) return sobol_sample_1d(g_sample_index, g_pixel_seed, dimension);
   return rand();

@@ -58,7 +58,8 @@ TEST(ShaderFeatures, CornellBox) {
   EXPECT_EQ(shader_defines(f),
             "#define GLINT_NO_TEXTURES\n#define GLINT_NO_ENV_TEXTURE\n#define GLINT_NO_THIN_LENS\n"
             "#define GLINT_NO_COVERAGE\n#define GLINT_NO_TRANSPARENT\n#define GLINT_NO_REFRACTIVE\n"
-            "#define GLINT_NO_GENERAL_QUADS\n#define GLINT_NO_GENERAL_QUAD_LIGHTS\n");
+            "#define GLINT_NO_GENERAL_QUADS\n#define GLINT_NO_GENERAL_QUAD_LIGHTS\n"
+            "#define GLINT_MNEE\n");  // its mirror ball casts caustics of the ceiling lamp
 }
 
 TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
@@ -69,6 +70,7 @@ TEST(ShaderFeatures, DefaultProjectNeedsEverything) {
   expected.material_types &= ~bit(MaterialType::refractive);
   expected.has_general_quads = false;        // its quads are rectangles,
   expected.has_general_quad_lights = false;  // its lamp too
+  expected.mnee = true;                      // and its smooth mirror ball casts caustics
   EXPECT_EQ(f, expected);
 }
 

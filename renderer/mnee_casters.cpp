@@ -1,0 +1,79 @@
+#include "renderer/mnee_casters.h"
+
+#include <algorithm>
+
+#include "renderer/quad_shape.h"
+
+namespace glint {
+namespace {
+
+// shaders/lib/bsdf.glsl's DELTA_ROUGHNESS: below it a mirror or refractive surface is smooth.
+constexpr float kDeltaRoughness = 0.03f;
+
+// A validated scene's material of a shape (an unresolved name falls back to material 0 as in
+// pack_scene).
+const Material* material_of(const Scene& scene, const std::string& name) {
+  if (scene.materials.empty()) return nullptr;
+  return &scene.materials[static_cast<size_t>(std::max(find_material(scene, name), 0))];
+}
+
+bool emits(const Material& m) { return m.emission != glm::vec3(0); }
+
+bool is_delta(const Material& m) {
+  const bool smooth = m.roughness < kDeltaRoughness && m.roughness_texture.empty();
+  if (m.type == MaterialType::refractive) return smooth || m.ior == 1.0f;
+  return (m.type == MaterialType::reflective || m.type == MaterialType::transparent) && smooth;
+}
+
+}  // namespace
+
+bool is_mnee_caster_material(const Material& m) {
+  return (m.type == MaterialType::reflective || m.type == MaterialType::refractive) &&
+         m.roughness < kDeltaRoughness && m.roughness_texture.empty() && m.color_texture.empty() &&
+         m.opacity >= 1.0f && !emits(m) && (m.type != MaterialType::refractive || m.ior > 0.0f);
+}
+
+std::vector<int> mnee_casters(const Scene& scene) {
+  std::vector<int> out;
+  for (size_t i = 0; i < scene.spheres.size() && out.size() < size_t(kMaxMneeCasters); ++i) {
+    const Material* m = material_of(scene, scene.spheres[i].material);
+    if (m && is_mnee_caster_material(*m) && scene.spheres[i].radius > 0) out.push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+bool mnee_pays_off(const Scene& scene) {
+  if (!scene_needs_mnee(scene)) return false;
+  double largest_cross_section = 0;
+  for (int i : mnee_casters(scene)) {
+    const double r = scene.spheres[static_cast<size_t>(i)].radius;
+    largest_cross_section = std::max(largest_cross_section, 3.14159265358979 * r * r);
+  }
+  double smallest_lamp = -1;
+  auto lamp = [&](const Material* m, double area) {
+    if (m && emits(*m) && area > 0 && (smallest_lamp < 0 || area < smallest_lamp)) smallest_lamp = area;
+  };
+  for (const Sphere& s : scene.spheres)
+    lamp(material_of(scene, s.material), 4.0 * 3.14159265358979 * double(s.radius) * s.radius);
+  for (const Quad& q : scene.quads) {
+    if (!quad_is_parallelogram(q.corners)) continue;
+    const glm::dvec3 p0(q.corners[0]), p1(q.corners[1]), p2(q.corners[2]);
+    lamp(material_of(scene, q.material), glm::length(glm::cross(p1 - p0, p2 - p0)));
+  }
+  return smallest_lamp >= 0 && smallest_lamp <= kMneeSmallLampShare * largest_cross_section;
+}
+
+bool scene_needs_mnee(const Scene& scene) {
+  if (mnee_casters(scene).empty()) return false;
+  bool light = false, receiver = false;
+  auto visit = [&](const Material* m, bool sampled_shape) {
+    if (!m) return;
+    light = light || (emits(*m) && sampled_shape);
+    receiver = receiver || !is_delta(*m);
+  };
+  for (const Sphere& s : scene.spheres) visit(material_of(scene, s.material), true);
+  for (const Quad& q : scene.quads) visit(material_of(scene, q.material), quad_is_parallelogram(q.corners));
+  return light && receiver;
+}
+
+}  // namespace glint

@@ -1,0 +1,273 @@
+// Manifold next-event estimation of caustics through smooth spheres (shaders/lib/
+// manifold_nee.glsl): the program that adds it converges to the plain path tracer's image (the
+// generic program, which has no MNEE), over the whole image and over the caustic alone (a
+// missing or doubled partition of path space shows there first), with glass and mirror balls,
+// sphere and quad lamps, in both back ends; merged sample ranges equal one render; and scenes
+// without casters compile the program they compiled before.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "gl_test_support.h"
+#include "renderer/gpu_renderer.h"
+#include "renderer/mnee_casters.h"
+#include "renderer/part_merge.h"
+#include "renderer/project_file.h"
+#include "renderer/render_part.h"
+#include "renderer/shader_features.h"
+
+namespace glint {
+namespace {
+
+constexpr int kWidth = 20, kHeight = 16;
+// Seeds of each estimate: their spread gives its standard error. MNEE renders 32 samples a seed,
+// the path tracer 128 (its caustic is the noisier one).
+constexpr int kSeeds = 12;
+
+enum class Ball { glass, mirror, both };
+
+// A lamp above and left of a ball on a matte floor: the ball focuses (glass) or spreads (mirror)
+// the lamp's light onto the floor at its right, in view: caustic paths E D S L and E D S S L.
+// The lamp is large enough that the path tracer, the reference, finds those paths often (a
+// small one makes its estimate heavy-tailed, and a few seeds' spread then understates its error).
+Scene caustic_scene(Ball ball, bool quad_lamp) {
+  Scene s = test::empty_scene();
+  s.camera.position = {0, 1.6f, 3.2f};
+  s.camera.target = {0, 0.4f, 0};
+  s.render.max_bounces = 8;
+  s.materials.push_back({.name = "floor", .color = {0.8f, 0.8f, 0.8f}});
+  s.materials.push_back({.name = "lamp", .color = {0, 0, 0}, .emission = {16, 16, 16}});
+  s.materials.push_back({.name = "glass", .type = MaterialType::refractive, .color = {1, 0.9f, 0.8f}, .ior = 1.5f});
+  s.materials.push_back({.name = "mirror", .type = MaterialType::reflective, .color = {0.9f, 0.8f, 0.9f}});
+  s.quads.push_back({.material = "floor", .corners = {glm::vec3(-6, 0, -6), glm::vec3(-6, 0, 6),
+                                                      glm::vec3(6, 0, -6), glm::vec3(6, 0, 6)}});
+  if (ball == Ball::both) {
+    s.spheres.push_back({.center = {0.3f, 0.4f, 0.2f}, .radius = 0.4f, .material = "glass"});
+    s.spheres.push_back({.center = {-0.3f, 0.3f, -0.7f}, .radius = 0.3f, .material = "mirror"});
+  } else {
+    s.spheres.push_back({.center = {0, 0.5f, 0}, .radius = 0.5f, .material = ball == Ball::glass ? "glass" : "mirror"});
+  }
+  if (quad_lamp) {
+    s.quads.push_back({.material = "lamp", .corners = {glm::vec3(-1.4f, 1.2f, -0.4f), glm::vec3(-0.6f, 1.2f, -0.4f),
+                                                       glm::vec3(-1.4f, 1.2f, 0.4f), glm::vec3(-0.6f, 1.2f, 0.4f)}});
+  } else {
+    s.spheres.push_back({.center = {-1.0f, 1.2f, 0}, .radius = 0.25f, .material = "lamp"});
+  }
+  return s;
+}
+
+// A wall lit by a lamp only through a mirror ball (or a glass one, whose reflection it sees): two black shades, one on each side of the
+// lamp, hide it from the wall and from the camera but not from the ball beside it, whose left side
+// reflects its light onto the wall. Nearly all of the wall's light is the mirror's caustic
+// (E D S L), so that MNEE counting it twice, or not at all, changes the image's mean by about
+// half.
+Scene mirror_caustic_on_a_wall(bool glass = false) {
+  Scene s = test::empty_scene();
+  s.camera.position = {0, 0.5f, 3.5f};
+  s.camera.target = {0, 0.5f, -1.5f};
+  s.render.max_bounces = 8;
+  s.materials.push_back({.name = "wall", .color = {0.8f, 0.8f, 0.8f}});
+  s.materials.push_back({.name = "lamp", .color = {0, 0, 0}, .emission = {100, 100, 100}});
+  s.materials.push_back({.name = "shade", .color = {0, 0, 0}});
+  s.materials.push_back({.name = "mirror", .type = MaterialType::reflective, .color = {0.9f, 0.8f, 0.9f}});
+  s.quads.push_back({.material = "wall", .corners = {glm::vec3(-4, -3, -1.5f), glm::vec3(4, -3, -1.5f),
+                                                     glm::vec3(-4, 4, -1.5f), glm::vec3(4, 4, -1.5f)}});
+  for (float z : {-0.15f, 0.15f})
+    s.quads.push_back({.material = "shade", .corners = {glm::vec3(-1.1f, 0.2f, z), glm::vec3(-0.5f, 0.2f, z),
+                                                        glm::vec3(-1.1f, 0.8f, z), glm::vec3(-0.5f, 0.8f, z)}});
+  // Glass of a high index reflects a third of the light at normal incidence, more at grazing.
+  s.materials.push_back({.name = "glass", .type = MaterialType::refractive, .color = {1, 1, 1}, .ior = 4.0f});
+  s.spheres.push_back({.center = {0, 0.5f, 0}, .radius = 0.4f, .material = glass ? "glass" : "mirror"});
+  s.spheres.push_back({.center = {-0.8f, 0.5f, 0}, .radius = 0.12f, .material = "lamp"});
+  return s;
+}
+
+// Mean green over seeds, of the whole image and of a region where the caustic falls (by default
+// the bottom-right quarter, the floor right of the ball), with their standard errors from the
+// seeds' spread.
+struct Estimate {
+  double mean = 0;
+  double standard_error = 0;
+  double caustic_mean = 0;
+  double caustic_standard_error = 0;
+};
+
+using Region = bool (*)(int x, int y);
+bool in_caustic_quarter(int x, int y) { return x >= kWidth / 2 && y >= kHeight / 2; }
+// The wall left of the mirror ball of mirror_caustic_on_a_wall (the ball, which shows the lamp,
+// and the shades are right of it).
+bool on_the_wall(int x, int) { return x < kWidth / 5; }
+
+std::pair<double, double> mean_and_error(double sum, double sum2, int n) {
+  const double mean = sum / n;
+  return {mean, std::sqrt(std::max(0.0, (sum2 - n * mean * mean) / (n - 1)) / n)};
+}
+
+bool defines_mnee(const std::string& defines) { return defines.find("#define GLINT_MNEE\n") != std::string::npos; }
+
+// Renders `seeds` seeds of `spp` samples in passes of `pass` samples; with `mnee`, the scene's
+// own program (asserted to have MNEE), else the generic one (path tracing alone).
+Estimate estimate(const Scene& base, bool mnee, TraceBackend backend, int spp, int pass, int seeds,
+                  Region region = in_caustic_quarter) {
+  GpuRendererOptions options;
+  options.backend = backend;
+  options.force_generic_shader = !mnee;
+  options.mnee = MneeChoice::always;  // its lamps are large enough for the path tracer to converge
+  GpuRenderer r(options);
+  double sum = 0, sum2 = 0, caustic = 0, caustic2 = 0;
+  Estimate e;
+  for (int k = 0; k < seeds; ++k) {
+    Scene s = base;
+    s.render.seed = uint32_t(300 + k);
+    r.sync(s, 1, 1);  // a fresh accumulation for each seed
+    r.sync(s, kWidth, kHeight);
+    if (mnee) r.prepare_specialised_program();
+    for (int done = 0; done < spp; done += pass) r.trace(std::min(pass, spp - done));
+    EXPECT_EQ(defines_mnee(r.last_pass_defines()), mnee);
+    const Image img = r.read_accumulation();
+    EXPECT_TRUE(test::all_finite(img));
+    const double m = test::channel_stats(img, 1, [](int, int) { return true; }).mean;
+    const double c = test::channel_stats(img, 1, region).mean;
+    sum += m;
+    sum2 += m * m;
+    caustic += c;
+    caustic2 += c * c;
+  }
+  std::tie(e.mean, e.standard_error) = mean_and_error(sum, sum2, seeds);
+  std::tie(e.caustic_mean, e.caustic_standard_error) = mean_and_error(caustic, caustic2, seeds);
+  return e;
+}
+
+// The means agree within 4 standard errors of their difference (estimated from the seeds'
+// spread, so the tolerance follows the sample count).
+void expect_same_image(const Estimate& with_mnee, const Estimate& path_traced, const std::string& what) {
+  const double tolerance = 4 * std::hypot(with_mnee.standard_error, path_traced.standard_error);
+  EXPECT_NEAR(with_mnee.mean, path_traced.mean, tolerance)
+      << what << ": MNEE " << with_mnee.mean << " +- " << with_mnee.standard_error << ", path tracing "
+      << path_traced.mean << " +- " << path_traced.standard_error;
+  const double caustic_tolerance = 4 * std::hypot(with_mnee.caustic_standard_error, path_traced.caustic_standard_error);
+  EXPECT_NEAR(with_mnee.caustic_mean, path_traced.caustic_mean, caustic_tolerance)
+      << what << ", caustic region: MNEE " << with_mnee.caustic_mean << " +- " << with_mnee.caustic_standard_error
+      << ", path tracing " << path_traced.caustic_mean << " +- " << path_traced.caustic_standard_error;
+  EXPECT_GT(path_traced.mean, 0.01) << what;
+}
+
+TEST(ManifoldNee, CausticScenesCompileItIn) {
+  for (Ball ball : {Ball::glass, Ball::mirror, Ball::both})
+    for (bool quad_lamp : {false, true}) EXPECT_TRUE(scene_needs_mnee(caustic_scene(ball, quad_lamp)));
+  EXPECT_TRUE(scene_needs_mnee(mirror_caustic_on_a_wall()));
+  // The renderer's automatic choice: lamps small against the ball only.
+  EXPECT_FALSE(mnee_pays_off(caustic_scene(Ball::glass, false)));
+  Scene small_lamp = caustic_scene(Ball::glass, false);
+  small_lamp.spheres.back().radius = 0.03f;
+  EXPECT_TRUE(mnee_pays_off(small_lamp));
+  EXPECT_TRUE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/caustics.glint")));
+  EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/glass.glint")));
+  EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/projects/default.glint")));
+  EXPECT_EQ(mnee_casters(caustic_scene(Ball::both, false)), (std::vector<int>{0, 1}));
+}
+
+// Scenes without a smooth ball, without a lamp MNEE samples, or without a non-delta surface
+// compile the program they compiled before.
+TEST(ManifoldNee, OtherScenesDoNotCompileItIn) {
+  Scene matte = caustic_scene(Ball::glass, false);
+  matte.materials[2] = {.name = "glass", .color = {0.5f, 0.5f, 0.5f}};
+  EXPECT_FALSE(scene_needs_mnee(matte));
+  Scene rough = caustic_scene(Ball::mirror, false);
+  rough.materials[3].roughness = 0.2f;
+  EXPECT_FALSE(scene_needs_mnee(rough));
+  Scene sky = caustic_scene(Ball::glass, false);
+  sky.spheres.pop_back();  // the lamp
+  sky.environment.color = {1, 1, 1};
+  EXPECT_FALSE(scene_needs_mnee(sky));
+  EXPECT_FALSE(defines_mnee(shader_defines(scene_features(matte))));
+  EXPECT_TRUE(defines_mnee(shader_defines(scene_features(caustic_scene(Ball::glass, false)))));
+}
+
+TEST(ManifoldNee, GlassBallCausticConvergesToThePathTracersImage) {
+  test::ensure_gl_context();
+  const Scene s = caustic_scene(Ball::glass, false);
+  expect_same_image(estimate(s, true, TraceBackend::fragment, 32, 8, kSeeds),
+                    estimate(s, false, TraceBackend::fragment, 128, 32, kSeeds), "glass, sphere lamp");
+}
+
+TEST(ManifoldNee, MirrorBallCausticConvergesToThePathTracersImage) {
+  test::ensure_gl_context();
+  const Scene s = caustic_scene(Ball::mirror, false);
+  expect_same_image(estimate(s, true, TraceBackend::fragment, 32, 8, kSeeds),
+                    estimate(s, false, TraceBackend::fragment, 128, 32, kSeeds), "mirror, sphere lamp");
+}
+
+TEST(ManifoldNee, MirrorCausticAloneConvergesToThePathTracersImage) {
+  test::ensure_gl_context();
+  const Scene s = mirror_caustic_on_a_wall();
+  expect_same_image(estimate(s, true, TraceBackend::fragment, 512, 64, kSeeds, on_the_wall),
+                    estimate(s, false, TraceBackend::fragment, 2048, 64, kSeeds, on_the_wall), "mirror caustic on a wall");
+  const Scene g = mirror_caustic_on_a_wall(true);
+  expect_same_image(estimate(g, true, TraceBackend::fragment, 512, 64, kSeeds, on_the_wall),
+                    estimate(g, false, TraceBackend::fragment, 2048, 64, kSeeds, on_the_wall),
+                    "glass's reflected caustic on a wall");
+}
+
+TEST(ManifoldNee, TwoBallsAndAQuadLampConvergeToThePathTracersImage) {
+  test::ensure_gl_context();
+  const Scene quad = caustic_scene(Ball::glass, true);
+  expect_same_image(estimate(quad, true, TraceBackend::fragment, 32, 8, kSeeds),
+                    estimate(quad, false, TraceBackend::fragment, 128, 32, kSeeds), "glass, quad lamp");
+  const Scene both = caustic_scene(Ball::both, false);
+  expect_same_image(estimate(both, true, TraceBackend::fragment, 32, 8, kSeeds),
+                    estimate(both, false, TraceBackend::fragment, 128, 32, kSeeds), "glass and mirror, sphere lamp");
+}
+
+TEST(ManifoldNee, ComputeBackEndAndFewBouncesConvergeToThePathTracersImage) {
+  test::ensure_gl_context();
+  const Scene s = caustic_scene(Ball::glass, false);
+  expect_same_image(estimate(s, true, TraceBackend::compute, 32, 8, kSeeds),
+                    estimate(s, false, TraceBackend::compute, 128, 32, kSeeds), "compute back end");
+  // Two bounces: the mirror's chain from the floor (bounce 0) fits, the glass's does not.
+  Scene shallow = caustic_scene(Ball::both, false);
+  shallow.render.max_bounces = 2;
+  expect_same_image(estimate(shallow, true, TraceBackend::fragment, 32, 8, kSeeds),
+                    estimate(shallow, false, TraceBackend::fragment, 128, 32, kSeeds), "max_bounces 2");
+}
+
+// Each sample's MNEE numbers come from its sequence index: parts rendered separately and
+// merged equal the single render up to float rounding (as GlRenderParts checks for the path
+// tracer).
+TEST(ManifoldNee, MergedPartsEqualTheSingleRender) {
+  test::ensure_gl_context();
+  const Scene scene = caustic_scene(Ball::both, false);
+  GpuRendererOptions always;
+  always.mnee = MneeChoice::always;
+  GpuRenderer r(always);
+  auto render = [&](SampleRange range) {
+    RenderOptions options;
+    options.first_sample = static_cast<uint32_t>(range.first);
+    r.set_options(options);
+    r.sync(scene, 1, 1);
+    r.sync(scene, kWidth, kHeight);
+    r.prepare_specialised_program();
+    for (int64_t done = 0, k = 1; done < range.count(); done += k, ++k)
+      r.trace(static_cast<int>(std::min(k, range.count() - done)));
+    EXPECT_TRUE(defines_mnee(r.last_pass_defines()));
+    return r.read_accumulation();
+  };
+  const Image single = render({0, 12});
+  std::vector<RenderPart> parts;
+  for (SampleRange range : {SampleRange{0, 5}, SampleRange{5, 9}, SampleRange{9, 12}}) {
+    RenderPart p;
+    p.info.width = kWidth;
+    p.info.height = kHeight;
+    p.info.range = range;
+    p.image = render(range);
+    parts.push_back(std::move(p));
+  }
+  EXPECT_LT(test::max_relative_difference(merge_part_images(parts), single), 1e-5);
+}
+
+}  // namespace
+}  // namespace glint
