@@ -3,7 +3,7 @@
 # bounded number of inputs from the corpus in tests/fuzz/corpus (new inputs go to
 # build-fuzz/corpus; see the README for merging them into the repository). Exits non-zero on
 # any crash, sanitizer report or leak (the input is saved as build-fuzz/artifacts/crash-*), and
-# when the project loader ran fewer than its 10^6 inputs.
+# when the project loader ran fewer than its 3 x 10^5 inputs.
 #   bash scripts/fuzz.sh                           # the CI run (scripts/test.sh)
 #   GLINT_FUZZ_SECONDS=600 bash scripts/fuzz.sh    # longer: each target runs for that long
 # Each target runs as GLINT_FUZZ_WORKERS processes (default: the number of cores) that share
@@ -15,8 +15,8 @@ source scripts/compiler_cache.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 
-project_runs=${GLINT_FUZZ_PROJECT_RUNS:-1000000}
-image_seconds=${GLINT_FUZZ_IMAGE_SECONDS:-60}
+project_runs=${GLINT_FUZZ_PROJECT_RUNS:-300000}
+image_seconds=${GLINT_FUZZ_IMAGE_SECONDS:-30}
 seconds=${GLINT_FUZZ_SECONDS:-}
 workers=${GLINT_FUZZ_WORKERS:-$(nproc)}
 mkdir -p build-fuzz/artifacts
@@ -56,11 +56,11 @@ run() {
     status=1
   fi
 }
-# The project loader is bounded by executions (10^6 in all), with a time cap as a safety net;
+# The project loader is bounded by executions (3 x 10^5 in all), with a time cap as a safety net;
 # the image readers by time.
 run fuzz_project 8192 "$project_runs" -runs=$(((project_runs + workers - 1) / workers)) -max_total_time=900
 run fuzz_image 4096 0 -max_total_time="$image_seconds"
 # The Mitsuba and pbrt scene readers (glint convert), by time like the image readers.
-run fuzz_scene_exchange 8192 0 -max_total_time="${GLINT_FUZZ_EXCHANGE_SECONDS:-60}"
+run fuzz_scene_exchange 8192 0 -max_total_time="${GLINT_FUZZ_EXCHANGE_SECONDS:-30}"
 [ $status -eq 0 ] && echo "fuzz: no crashes" >&2
 exit $status
