@@ -156,6 +156,11 @@ void expect_same_image(const Estimate& with_mnee, const Estimate& path_traced, c
   EXPECT_GT(path_traced.mean, 0.01) << what;
 }
 
+// The MNEE program at 32 spp against path tracing alone at 128 (the caustic is noisier there).
+void expect_path_tracers_image(const Scene& s, const char* what, TraceBackend backend = TraceBackend::fragment) {
+  expect_same_image(estimate(s, true, backend, 32, 8, kSeeds), estimate(s, false, backend, 128, 32, kSeeds), what);
+}
+
 TEST(ManifoldNee, CausticScenesCompileItIn) {
   for (Ball ball : {Ball::glass, Ball::mirror, Ball::both})
     for (bool quad_lamp : {false, true}) EXPECT_TRUE(scene_needs_mnee(caustic_scene(ball, quad_lamp)));
@@ -191,15 +196,13 @@ TEST(ManifoldNee, OtherScenesDoNotCompileItIn) {
 TEST(ManifoldNee, GlassBallCausticConvergesToThePathTracersImage) {
   test::ensure_gl_context();
   const Scene s = caustic_scene(Ball::glass, false);
-  expect_same_image(estimate(s, true, TraceBackend::fragment, 32, 8, kSeeds),
-                    estimate(s, false, TraceBackend::fragment, 128, 32, kSeeds), "glass, sphere lamp");
+  expect_path_tracers_image(s, "glass, sphere lamp");
 }
 
 TEST(ManifoldNee, MirrorBallCausticConvergesToThePathTracersImage) {
   test::ensure_gl_context();
   const Scene s = caustic_scene(Ball::mirror, false);
-  expect_same_image(estimate(s, true, TraceBackend::fragment, 32, 8, kSeeds),
-                    estimate(s, false, TraceBackend::fragment, 128, 32, kSeeds), "mirror, sphere lamp");
+  expect_path_tracers_image(s, "mirror, sphere lamp");
 }
 
 TEST(ManifoldNee, MirrorCausticAloneConvergesToThePathTracersImage) {
@@ -216,23 +219,19 @@ TEST(ManifoldNee, MirrorCausticAloneConvergesToThePathTracersImage) {
 TEST(ManifoldNee, TwoBallsAndAQuadLampConvergeToThePathTracersImage) {
   test::ensure_gl_context();
   const Scene quad = caustic_scene(Ball::glass, true);
-  expect_same_image(estimate(quad, true, TraceBackend::fragment, 32, 8, kSeeds),
-                    estimate(quad, false, TraceBackend::fragment, 128, 32, kSeeds), "glass, quad lamp");
+  expect_path_tracers_image(quad, "glass, quad lamp");
   const Scene both = caustic_scene(Ball::both, false);
-  expect_same_image(estimate(both, true, TraceBackend::fragment, 32, 8, kSeeds),
-                    estimate(both, false, TraceBackend::fragment, 128, 32, kSeeds), "glass and mirror, sphere lamp");
+  expect_path_tracers_image(both, "glass and mirror, sphere lamp");
 }
 
 TEST(ManifoldNee, ComputeBackEndAndFewBouncesConvergeToThePathTracersImage) {
   test::ensure_gl_context();
   const Scene s = caustic_scene(Ball::glass, false);
-  expect_same_image(estimate(s, true, TraceBackend::compute, 32, 8, kSeeds),
-                    estimate(s, false, TraceBackend::compute, 128, 32, kSeeds), "compute back end");
+  expect_path_tracers_image(s, "compute back end", TraceBackend::compute);
   // Two bounces: the mirror's chain from the floor (bounce 0) fits, the glass's does not.
   Scene shallow = caustic_scene(Ball::both, false);
   shallow.render.max_bounces = 2;
-  expect_same_image(estimate(shallow, true, TraceBackend::fragment, 32, 8, kSeeds),
-                    estimate(shallow, false, TraceBackend::fragment, 128, 32, kSeeds), "max_bounces 2");
+  expect_path_tracers_image(shallow, "max_bounces 2");
 }
 
 // Each sample's MNEE numbers come from its sequence index: parts rendered separately and
