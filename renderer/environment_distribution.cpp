@@ -103,6 +103,39 @@ double EnvironmentDistribution::texel_probability(int x, int y) const {
   return row * (double(conditional(y, x + 1)) - double(conditional(y, x)));
 }
 
+double environment_peak_share(const EnvironmentDistribution& d, double solid_angle_share) {
+  struct Texel {
+    double radiance, solid_angle, probability;
+  };
+  std::vector<Texel> texels;
+  texels.reserve(static_cast<size_t>(d.width) * static_cast<size_t>(std::max(d.height, 0)));
+  const double pi = std::numbers::pi;
+  for (int y = 0; y < d.height; ++y) {
+    const double solid_angle = 2 * pi * pi / (double(d.width) * d.height) * std::sin(pi * (y + 0.5) / d.height);
+    if (!(solid_angle > 0)) continue;
+    for (int x = 0; x < d.width; ++x) {
+      const double p = d.texel_probability(x, y);
+      texels.push_back({p / solid_angle, solid_angle, p});
+    }
+  }
+  const double budget = solid_angle_share * 4 * pi;
+  auto brighter = [](const Texel& a, const Texel& b) { return a.radiance > b.radiance; };
+  // The brightest texels first: a partial sort of a few times the texels the budget holds on
+  // average (enough unless they crowd at the poles, then all of them).
+  const size_t few = std::min(texels.size(), static_cast<size_t>(4 * solid_angle_share * texels.size()) + 16);
+  for (size_t sorted : {few, texels.size()}) {
+    std::partial_sort(texels.begin(), texels.begin() + static_cast<std::ptrdiff_t>(sorted), texels.end(), brighter);
+    double covered = 0, share = 0;
+    for (size_t i = 0; i < sorted; ++i) {
+      const double take = std::min(1.0, (budget - covered) / texels[i].solid_angle);
+      covered += take * texels[i].solid_angle;
+      share += take * texels[i].probability;
+      if (covered >= budget) return share;
+    }
+  }
+  return 1.0;  // the whole sphere is less than the budget
+}
+
 PackedEnvironmentDistribution pack_environment_distribution(const EnvironmentDistribution& d) {
   PackedEnvironmentDistribution p;
   p.width = d.width;

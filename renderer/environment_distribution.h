@@ -37,6 +37,12 @@ struct EnvironmentDistribution {
   double texel_probability(int x, int y) const;
 };
 
+// The share of the map's power (its sampling probability) in its brightest texels (by
+// radiance, probability over solid angle) that together cover `solid_angle_share` of the
+// sphere: about solid_angle_share for a uniform sky, near 1 for a sun. Manifold next-event
+// estimation samples the environment where this is high (renderer/mnee_casters.h).
+double environment_peak_share(const EnvironmentDistribution& d, double solid_angle_share);
+
 // weights: width x height, row-major, >= 0 and finite (as environment_texel_weights returns).
 EnvironmentDistribution build_environment_distribution(int width, int height,
                                                        const std::vector<double>& weights);

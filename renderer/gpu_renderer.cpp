@@ -122,8 +122,11 @@ void GpuRenderer::update_features(const Scene& scene, const SceneDigests& d, boo
   if (geometry_changed || first_sync_ || d.textures != digests_.textures ||
       d.environment != digests_.environment)
     features_ = scene_features(scene);
-  features_.mnee = features_.mnee && (renderer_options_.mnee == MneeChoice::always ||
-                                      (renderer_options_.mnee == MneeChoice::automatic && mnee_pays_off(scene)));
+  uniforms_.mnee_lights = renderer_options_.mnee == MneeChoice::never
+                             ? 0
+                             : mnee_lights(scene, textures_.environment_peak_share(),
+                                           renderer_options_.mnee == MneeChoice::always);
+  features_.mnee = features_.mnee && uniforms_.mnee_lights != 0;
   features_.thin_lens = scene.camera.aperture_radius > 0;
   features_.loop_traversal = !use_bvh_;
   features_.bvh_traversal = use_bvh_;

@@ -64,7 +64,8 @@ struct GpuRendererOptions {
   // Always trace with the generic program (every feature compiled in): for measurements.
   bool force_generic_shader = false;
   // Manifold next-event estimation (renderer/mnee_casters.h): automatic, in the programs of
-  // scenes where it pays off (mnee_pays_off); always, in those of every scene that needs it;
+  // scenes where it pays off, for the lights where it does (mnee_lights); always, in those of
+  // every scene that needs it, for every light it can sample;
   // never, the path tracer alone. The same image in expectation either way.
   MneeChoice mnee = MneeChoice::automatic;
   // Where specialised programs are built (renderer/program_worker.h): off the calling thread,

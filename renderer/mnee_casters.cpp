@@ -25,10 +25,30 @@ bool is_delta(const Material& m) {
   return (m.type == MaterialType::reflective || m.type == MaterialType::transparent) && smooth;
 }
 
+// An emitting sphere or parallelogram quad: a lamp MNEE samples.
+bool has_sampled_lamp(const Scene& scene) {
+  bool lamp = false;
+  for (const Sphere& s : scene.spheres) {
+    const Material* m = material_of(scene, s.material);
+    lamp = lamp || (m && emits(*m));
+  }
+  for (const Quad& q : scene.quads) {
+    const Material* m = material_of(scene, q.material);
+    lamp = lamp || (m && emits(*m) && quad_is_parallelogram(q.corners));
+  }
+  return lamp;
+}
+
+// An environment map that MNEE (and next-event estimation) sample.
+bool has_environment_map(const Scene& scene) {
+  return !scene.environment.texture.empty() && scene.environment.intensity > 0;
+}
+
 }  // namespace
 
 bool is_mnee_caster_material(const Material& m) {
-  return (m.type == MaterialType::reflective || m.type == MaterialType::refractive) &&
+  return (m.type == MaterialType::reflective || m.type == MaterialType::refractive ||
+          m.type == MaterialType::transparent) &&
          m.roughness < kDeltaRoughness && m.roughness_texture.empty() && m.color_texture.empty() &&
          m.opacity >= 1.0f && !emits(m) && (m.type != MaterialType::refractive || m.ior > 0.0f);
 }
@@ -40,6 +60,15 @@ std::vector<int> mnee_casters(const Scene& scene) {
     if (m && is_mnee_caster_material(*m) && scene.spheres[i].radius > 0) out.push_back(static_cast<int>(i));
   }
   return out;
+}
+
+int mnee_lights(const Scene& scene, double environment_peak_share, bool always) {
+  if (!scene_needs_mnee(scene)) return 0;
+  int lights = 0;
+  if (has_sampled_lamp(scene) && (always || mnee_pays_off(scene))) lights |= kMneeLamps;
+  if (has_environment_map(scene) && (always || environment_peak_share >= kMneePeakedEnvironmentShare))
+    lights |= kMneeEnvironment;
+  return lights;
 }
 
 bool mnee_pays_off(const Scene& scene) {
@@ -65,7 +94,7 @@ bool mnee_pays_off(const Scene& scene) {
 
 bool scene_needs_mnee(const Scene& scene) {
   if (mnee_casters(scene).empty()) return false;
-  bool light = false, receiver = false;
+  bool light = has_environment_map(scene), receiver = false;
   auto visit = [&](const Material* m, bool sampled_shape) {
     if (!m) return;
     light = light || (emits(*m) && sampled_shape);

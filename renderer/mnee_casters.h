@@ -11,16 +11,18 @@ namespace glint {
 // The shader's MNEE_MAX_CASTERS: casters beyond the first this many are left to path tracing.
 inline constexpr int kMaxMneeCasters = 8;
 
-// A smooth mirror or smooth refractive material as the path tracer sees it (shaders/lib/bsdf.glsl,
-// is_delta_material), untextured, opaque and not emitting: light through it follows one chain
-// per sphere, which the shader solves exactly.
+// A smooth mirror, refractive or thin-glass material as the path tracer sees it (shaders/lib/
+// bsdf.glsl, is_delta_material), untextured, opaque and not emitting: light through it (off it,
+// for thin glass, whose transmission next-event estimation already follows) takes one chain per
+// sphere, which the shader solves exactly.
 bool is_mnee_caster_material(const Material& m);
 
 // Indices of the spheres of caster material and positive radius, the first kMaxMneeCasters.
 std::vector<int> mnee_casters(const Scene& scene);
 
-// True when MNEE can add light: a caster, an emitter it samples (a sphere or a parallelogram
-// quad) and a surface that is not delta (where next-event estimation runs).
+// True when MNEE can add light: a caster, a light it samples (an emitting sphere or
+// parallelogram quad, or an environment map) and a surface that is not delta (where
+// next-event estimation runs).
 bool scene_needs_mnee(const Scene& scene);
 
 // A lamp MNEE samples is small against a caster when its area is at most this share of the
@@ -29,8 +31,24 @@ bool scene_needs_mnee(const Scene& scene);
 // lamp/cross-section 0.02 gained, 0.43 and 0.53 lost; the threshold lies between, not tuned).
 inline constexpr double kMneeSmallLampShare = 0.1;
 
-// True when the scene needs MNEE and has a lamp small against a caster (kMneeSmallLampShare):
-// the renderer's automatic choice (GpuRendererOptions::mnee).
+// True when the scene needs MNEE and has a lamp small against a caster (kMneeSmallLampShare).
 bool mnee_pays_off(const Scene& scene);
+
+// An environment map is peaked, like a sky with a sun, when its brightest texels that cover
+// kPeakSolidAngleShare of the sphere hold at least this share of its power (environment_peak_share).
+// Path tracing then finds the sun through a ball as rarely as a small lamp, and MNEE pays off
+// (projects/default.glint's sky: 0.25); a smooth sky (about kPeakSolidAngleShare) is left to it.
+// Not tuned: between those two.
+inline constexpr double kPeakSolidAngleShare = 0.001;
+inline constexpr double kMneePeakedEnvironmentShare = 0.1;
+
+// Which lights MNEE samples (the shader's u_mnee_lights), a bit set.
+inline constexpr int kMneeLamps = 1;
+inline constexpr int kMneeEnvironment = 2;
+
+// The renderer's choice (GpuRendererOptions::mnee): none when the scene does not need MNEE;
+// else its lamps where mnee_pays_off and its environment map where it is peaked
+// (environment_peak_share, 0 without a map), or every light MNEE can sample when `always`.
+int mnee_lights(const Scene& scene, double environment_peak_share, bool always);
 
 }  // namespace glint

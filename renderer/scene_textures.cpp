@@ -6,6 +6,7 @@
 
 #include "renderer/environment_distribution.h"
 #include "renderer/gl_objects.h"
+#include "renderer/mnee_casters.h"
 #include "renderer/scene_tables.h"
 #include "renderer/scene_validation.h"
 #include "renderer/shader_lib.h"
@@ -169,8 +170,9 @@ glm::ivec2 SceneTextures::upload_environment(const Scene& scene, SceneTables& ta
     throw ImageError(where + std::to_string(image->width) + "x" + std::to_string(image->height) +
                      " is more than this OpenGL driver holds (" + std::to_string(max_side) +
                      " texels per side, GL_MAX_TEXTURE_SIZE)");
-  PackedEnvironmentDistribution distribution =
-      pack_environment_distribution(build_environment_distribution(*image));
+  const EnvironmentDistribution unpacked = build_environment_distribution(*image);
+  const double peak_share = env.texture.empty() ? 0.0 : glint::environment_peak_share(unpacked, kPeakSolidAngleShare);
+  PackedEnvironmentDistribution distribution = pack_environment_distribution(unpacked);
   try {
     tables.check_size("its sampling tables' floats", distribution.data);
   } catch (const std::runtime_error& e) {
@@ -193,6 +195,7 @@ glm::ivec2 SceneTextures::upload_environment(const Scene& scene, SceneTables& ta
   }
   if (environment_texture_) glDeleteTextures(1, &environment_texture_);
   environment_texture_ = texture_id;
+  environment_peak_share_ = peak_share;
   glTextureParameteri(environment_texture_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(environment_texture_, GL_TEXTURE_WRAP_S, GL_REPEAT);

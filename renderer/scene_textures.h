@@ -77,11 +77,14 @@ class SceneTextures {
   GLuint texels_8bit() const { return texel_textures_[0]; }
   GLuint texels_float() const { return texel_textures_[1]; }
   GLuint environment() const { return environment_texture_; }
+  // environment_peak_share of the map (0 without one), for manifold next-event estimation.
+  double environment_peak_share() const { return environment_peak_share_; }
 
  private:
   int64_t max_texels_ = 0;
   GLuint texel_textures_[2] = {0, 0};  // RGBA8, RGBA32F
   GLuint environment_texture_ = 0;
+  double environment_peak_share_ = 0;
   std::vector<TextureLayer> layers_;
 };
 

@@ -73,6 +73,7 @@ void apply_trace_uniforms(GlProgram& p, const TraceUniforms& u) {
   p.set("u_sphere_count", u.sphere_count);
   p.set("u_quad_count", u.quad_count);
   p.set("u_caster_count", u.caster_count);
+  p.set("u_mnee_lights", u.mnee_lights);
   for (int k = 0; k < u.caster_count; ++k)
     p.set(("u_casters[" + std::to_string(k) + "]").c_str(), u.casters[static_cast<size_t>(k)]);
   p.set("u_use_bvh", u.use_bvh);

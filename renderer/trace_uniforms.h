@@ -34,6 +34,7 @@ struct TraceUniforms {
   int quad_count = 0;
   int caster_count = 0;  // set by the geometry's upload, as casters (renderer/mnee_casters.h)
   std::array<int, kMaxMneeCasters> casters{};
+  int mnee_lights = 0;   // the lights MNEE samples (mnee_lights: kMneeLamps, kMneeEnvironment)
   int use_bvh = 0;
   int bvh_max_steps = 0;
   glm::vec3 cam_origin{0}, cam_right{0}, cam_up{0}, cam_forward{0};

@@ -47,17 +47,20 @@ PathState start_path(Ray ray) {
 }
 
 #if defined(GLINT_MNEE)
-// The chain state after scattering at `hit` into wi: MNEE counts exactly the paths that leave
-// a vertex where it ran, reflect once off a caster from outside (mirror or glass), or refract into a caster and
-// straight out of the same one, and then meet an emitter it samples (lib/manifold_nee.glsl);
-// the path tracer gives those weight 0. Anything else on the way (another surface, an internal
-// reflection, a cut-out passed) leaves the chain.
-int mnee_chain_state(int state, inout int caster, bool mnee_ran, SceneHit hit, vec3 wo, vec3 wi) {
+// The chain state after scattering at `hit` (of material type `type`) into wi: MNEE counts
+// exactly the paths that leave a vertex where it ran, reflect once off a caster from outside
+// (mirror, glass or thin glass), or refract into a glass caster and straight out of the same
+// one, and then meet an emitter or the environment map that it samples (lib/manifold_nee.glsl);
+// the path tracer gives those weight 0. Cut-outs and smooth thin glass passed straight through
+// (`straight`) are not vertices: MNEE's segments pass them too. Anything else on the way
+// (another surface, an internal reflection) leaves the chain.
+int mnee_chain_state(int state, inout int caster, bool mnee_ran, SceneHit hit, bool straight, vec3 wo, vec3 wi) {
   if (mnee_ran) return MNEE_CHAIN_FROM_X;
+  if (straight) return state;
   bool outside = dot(hit.normal, wo) > 0.0;  // a sphere's normal points out
   bool leaves = dot(hit.normal, wi) > 0.0;
   if (state == MNEE_CHAIN_FROM_X && outside && mnee_is_caster(hit.ref)) {
-    if (leaves) return MNEE_CHAIN_DONE;  // a reflection, off a mirror or glass
+    if (leaves) return MNEE_CHAIN_DONE;  // a reflection, off a mirror, glass or thin glass
     caster = hit.ref;
     return MNEE_CHAIN_INSIDE;
   }
@@ -89,6 +92,10 @@ bool continue_path(inout PathState path) {
       w = power_heuristic(path.last_pdf, u_env_select * environment_pdf(ray.direction, u_env_rotation));
     }
 #endif
+#if defined(GLINT_MNEE)
+    // A caustic chain that manifold next-event estimation counts.
+    if (path.mnee_chain == MNEE_CHAIN_DONE && mnee_samples_environment()) w = 0.0;
+#endif
     if (path.bounces == 0) g_primary_escaped = true;
     if (!(u_transparent_background && path.bounces == 0))
       path.radiance += path.throughput * environment(ray.direction) * w;
@@ -105,9 +112,6 @@ bool continue_path(inout PathState path) {
     // Not a bounce: the ray continues unchanged past the surface.
     path.ray.origin = offset_surface_point(p, -n, hit.error_scale);
     ++path.passes;
-#if defined(GLINT_MNEE)
-    path.mnee_chain = MNEE_CHAIN_NONE;
-#endif
     return true;
   }
 #endif
@@ -150,7 +154,8 @@ bool continue_path(inout PathState path) {
   BsdfSample s = sample_bsdf(m, n, wo, u_lobe, u);
   if (!s.valid) return false;
 #if defined(GLINT_MNEE)
-  path.mnee_chain = mnee_chain_state(path.mnee_chain, path.mnee_caster, mnee_ran, hit, wo, s.wi);
+  bool straight = s.delta && dot(s.wi, n) < 0.0 && m.type == MATERIAL_TRANSPARENT;  // thin glass passed
+  path.mnee_chain = mnee_chain_state(path.mnee_chain, path.mnee_caster, mnee_ran, hit, straight, wo, s.wi);
 #endif
   path.throughput *= s.weight;
   if (max_component(path.throughput) <= 0.0) return false;

@@ -6,7 +6,10 @@
 // without casters compile the program they compiled before.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -83,6 +86,45 @@ Scene mirror_caustic_on_a_wall(bool glass = false) {
   s.materials.push_back({.name = "glass", .type = MaterialType::refractive, .color = {1, 1, 1}, .ior = 4.0f});
   s.spheres.push_back({.center = {0, 0.5f, 0}, .radius = 0.4f, .material = glass ? "glass" : "mirror"});
   s.spheres.push_back({.center = {-0.8f, 0.5f, 0}, .radius = 0.12f, .material = "lamp"});
+  return s;
+}
+
+// A sky with a sun (64 x 32 texels, the sun 3 x 3 of them at 60 times the sky, about 17
+// degrees wide: large enough for the path tracer, the reference, to find it through a ball),
+// written into `dir`, over a matte floor under a thin-glass pane with a mirror ball, and a
+// thin-glass ball in front of it: the sun's caustics off the mirror and off the thin glass's
+// outside, all through the pane (whose straight passes MNEE's segments take).
+Scene sun_caustic_scene(const std::filesystem::path& dir) {
+  Image sky;
+  sky.width = 64;
+  sky.height = 32;
+  sky.pixels.assign(size_t(64) * 32 * 4, 1.0f);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      float* p = &sky.pixels[size_t(y * 64 + x) * 4];
+      const bool sun = x >= 40 && x <= 42 && y >= 9 && y <= 11;
+      p[0] = sun ? 60.0f : 0.3f;
+      p[1] = sun ? 60.0f : 0.4f;
+      p[2] = sun ? 55.0f : 0.6f;
+    }
+  save_image(dir / "sun.exr", sky);
+  Scene s = test::empty_scene();
+  s.base_dir = dir;
+  s.environment.texture = "sun.exr";
+  s.environment.rotation_deg = 20;
+  s.camera.position = {0, 1.6f, 3.2f};
+  s.camera.target = {0, 0.4f, 0};
+  s.render.max_bounces = 8;
+  s.materials.push_back({.name = "floor", .color = {0.8f, 0.8f, 0.8f}});
+  s.materials.push_back({.name = "mirror", .type = MaterialType::reflective, .color = {0.9f, 0.8f, 0.9f}});
+  s.materials.push_back({.name = "thin", .type = MaterialType::transparent, .color = {0.9f, 1, 0.8f}, .ior = 2.5f});
+  s.quads.push_back({.material = "floor", .corners = {glm::vec3(-6, 0, -6), glm::vec3(-6, 0, 6),
+                                                      glm::vec3(6, 0, -6), glm::vec3(6, 0, 6)}});
+  s.spheres.push_back({.center = {-0.2f, 0.5f, -0.3f}, .radius = 0.5f, .material = "mirror"});
+  s.spheres.push_back({.center = {0.5f, 0.35f, 0.6f}, .radius = 0.35f, .material = "thin"});
+  // A thin-glass pane just above the floor: every chain to the floor passes it straight.
+  s.quads.push_back({.material = "thin", .corners = {glm::vec3(-6, 0.05f, -6), glm::vec3(-6, 0.05f, 6),
+                                                     glm::vec3(6, 0.05f, -6), glm::vec3(6, 0.05f, 6)}});
   return s;
 }
 
@@ -172,7 +214,11 @@ TEST(ManifoldNee, CausticScenesCompileItIn) {
   EXPECT_TRUE(mnee_pays_off(small_lamp));
   EXPECT_TRUE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/caustics.glint")));
   EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/glass.glint")));
-  EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/projects/default.glint")));
+  const Scene default_project = load_project(std::string(GLINT_SOURCE_DIR) + "/projects/default.glint");
+  EXPECT_FALSE(mnee_pays_off(default_project));
+  // Its sky has a sun: MNEE samples the map, not its lamp (large against the balls).
+  EXPECT_EQ(mnee_lights(default_project, kMneePeakedEnvironmentShare, false), kMneeEnvironment);
+  EXPECT_EQ(mnee_lights(default_project, 0.0, true), kMneeLamps | kMneeEnvironment);
   EXPECT_EQ(mnee_casters(caustic_scene(Ball::both, false)), (std::vector<int>{0, 1}));
 }
 
@@ -222,6 +268,25 @@ TEST(ManifoldNee, TwoBallsAndAQuadLampConvergeToThePathTracersImage) {
   expect_path_tracers_image(quad, "glass, quad lamp");
   const Scene both = caustic_scene(Ball::both, false);
   expect_path_tracers_image(both, "glass and mirror, sphere lamp");
+}
+
+// Parallel light from the environment map through a mirror and off (and straight through) thin
+// glass: the MNEE program at 128 spp against path tracing at 512, and the renderer's automatic
+// choice samples a peaked map (and no lamp, which this scene lacks).
+TEST(ManifoldNee, SunCausticsConvergeToThePathTracersImage) {
+  test::ensure_gl_context();
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("glint-gl-mnee-sun-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const Scene s = sun_caustic_scene(dir);
+  EXPECT_TRUE(scene_needs_mnee(s));
+  EXPECT_EQ(mnee_lights(s, 0.5, false), kMneeEnvironment);
+  EXPECT_EQ(mnee_lights(s, 0.01, false), 0);
+  // More samples than the lamp cases: the share of the chains through the pane (what a wrong
+  // partition there doubles) is about 1.5% of the image's mean.
+  expect_same_image(estimate(s, true, TraceBackend::fragment, 128, 32, kSeeds),
+                    estimate(s, false, TraceBackend::fragment, 512, 64, kSeeds), "sun, mirror and thin glass");
+  fs::remove_all(dir);
 }
 
 TEST(ManifoldNee, ComputeBackEndAndFewBouncesConvergeToThePathTracersImage) {

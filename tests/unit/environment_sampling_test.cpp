@@ -365,5 +365,20 @@ TEST(EnvironmentLightLargeMap, FaintTexelsBesideASunKeepTheirProbability) {
   EXPECT_GE(r.p_value, kChiSquareAlpha) << r.describe();
 }
 
+// environment_peak_share: a uniform sky spreads its power by solid angle; a sun of one texel
+// holds nearly all of it.
+TEST(EnvironmentPeakShare, SeparatesASunFromAUniformSky) {
+  const int w = 128, h = 64;
+  std::vector<double> weights(size_t(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) weights[size_t(y) * w + x] = std::sin(std::numbers::pi * (y + 0.5) / h);
+  const EnvironmentDistribution uniform = build_environment_distribution(w, h, weights);
+  EXPECT_NEAR(environment_peak_share(uniform, 0.001), 0.001, 2e-4);
+  EXPECT_NEAR(environment_peak_share(uniform, 0.25), 0.25, 0.01);
+  weights[size_t(20) * w + 30] *= 1e5;
+  const EnvironmentDistribution sun = build_environment_distribution(w, h, weights);
+  EXPECT_GT(environment_peak_share(sun, 0.001), 0.9);
+}
+
 }  // namespace
 }  // namespace glint::shader_test
