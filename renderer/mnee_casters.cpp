@@ -44,6 +44,19 @@ bool has_environment_map(const Scene& scene) {
   return !scene.environment.texture.empty() && scene.environment.intensity > 0;
 }
 
+// Whether every surface that is neither a lamp nor smooth (delta) is matte.
+bool only_matte_receivers(const Scene& scene) {
+  auto matte = [&](const std::string& name) {
+    const Material* m = material_of(scene, name);
+    return !m || emits(*m) || is_delta(*m) || m->type == MaterialType::matte;
+  };
+  for (const Sphere& s : scene.spheres)
+    if (!matte(s.material)) return false;
+  for (const Quad& q : scene.quads)
+    if (!matte(q.material)) return false;
+  return true;
+}
+
 }  // namespace
 
 bool is_mnee_caster_material(const Material& m) {
@@ -66,7 +79,8 @@ int mnee_lights(const Scene& scene, double environment_peak_share, bool always) 
   if (!scene_needs_mnee(scene)) return 0;
   int lights = 0;
   if (has_sampled_lamp(scene) && (always || mnee_pays_off(scene))) lights |= kMneeLamps;
-  if (has_environment_map(scene) && (always || environment_peak_share >= kMneePeakedEnvironmentShare))
+  if (has_environment_map(scene) &&
+      (always || (environment_peak_share >= kMneePeakedEnvironmentShare && only_matte_receivers(scene))))
     lights |= kMneeEnvironment;
   return lights;
 }

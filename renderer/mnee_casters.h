@@ -35,10 +35,10 @@ inline constexpr double kMneeSmallLampShare = 0.1;
 bool mnee_pays_off(const Scene& scene);
 
 // An environment map is peaked, like a sky with a sun, when its brightest texels that cover
-// kPeakSolidAngleShare of the sphere hold at least this share of its power (environment_peak_share).
-// Path tracing then finds the sun through a ball as rarely as a small lamp, and MNEE pays off
-// (projects/default.glint's sky: 0.25); a smooth sky (about kPeakSolidAngleShare) is left to it.
-// Not tuned: between those two.
+// kPeakSolidAngleShare of the sphere hold at least this share of its power (environment_peak_share):
+// path tracing then finds the sun through a ball as rarely as a small lamp (projects/assets/
+// sky.hdr: 0.25); a smooth sky (about kPeakSolidAngleShare) is left to it. Not tuned: between
+// those two.
 inline constexpr double kPeakSolidAngleShare = 0.001;
 inline constexpr double kMneePeakedEnvironmentShare = 0.1;
 
@@ -47,8 +47,13 @@ inline constexpr int kMneeLamps = 1;
 inline constexpr int kMneeEnvironment = 2;
 
 // The renderer's choice (GpuRendererOptions::mnee): none when the scene does not need MNEE;
-// else its lamps where mnee_pays_off and its environment map where it is peaked
-// (environment_peak_share, 0 without a map), or every light MNEE can sample when `always`.
+// else its lamps where mnee_pays_off, and its environment map where that is peaked
+// (environment_peak_share, 0 without a map) and every surface that is neither a lamp nor smooth
+// is matte; or every light MNEE can sample when `always`. With glossy surfaces the sun's own
+// highlights and glossy caustics, which MNEE does not sample, ruled the error, and MNEE's cost
+// (about 2.3x a sample) lost at equal time: docs/DESIGN.md §3.10 (bench/scenes/env_dof.glint,
+// matte but for a mirror ball, gained 3x; roughness_ladder, showcase and projects/default lost
+// 1.2-1.7x).
 int mnee_lights(const Scene& scene, double environment_peak_share, bool always);
 
 }  // namespace glint

@@ -45,6 +45,19 @@ float mnee_environment_select() {
   return mnee_samples_lamps() ? u_env_select : 1.0;
 }
 
+// Whether MNEE runs at a vertex of material m: where its BSDF is broad. On a sharp lobe (a
+// glossy coat or rough metal of low roughness) f at the chain's direction is mostly near 0 and
+// now and then huge, and MNEE's estimate of the caustic has fireflies that BSDF sampling, which
+// follows the lobe, does not have; the path tracer keeps those chains there. The coat's peak
+// D = 1 / (pi alpha^2) times its F0 of 0.04 stays near the base's 1 / pi from roughness 0.25 on;
+// a metal's F is near 1, so it needs a broader lobe.
+const float MNEE_MIN_GLOSSY_ROUGHNESS = 0.25;
+const float MNEE_MIN_ROUGHNESS = 0.5;
+bool mnee_receiver(SurfaceMaterial m) {
+  if (m.type == MATERIAL_MATTE) return true;
+  return m.roughness >= (m.type == MATERIAL_GLOSSY ? MNEE_MIN_GLOSSY_ROUGHNESS : MNEE_MIN_ROUGHNESS);
+}
+
 // Lamps whose points MNEE samples: spheres and parallelogram quads (uniform in area).
 bool mnee_light_supported(GpuLight l) { return mnee_samples_lamps() && (l.shape.x == 0 || l.shape.z == 1); }
 
@@ -131,13 +144,17 @@ vec3 mnee_plane_offset(Meridian m, Chain2D c, vec3 n) {
 }
 
 // dω_y / dA_x of the ray tube at a chain through x: the sagittal spread follows from the
-// rotation about the axis, the meridional one from t (central difference); dω_y =
-// |sin t| dt dpsi at y, dA_x = |d_m x d_s| dt dpsi on x's tangent plane. For parallel light
-// dA_perp / dA_x, the beam's cross-section dA_perp = |t| dt dpsi.
+// rotation about the axis, the meridional one from t (central difference; one-sided where a
+// neighbour's ray misses the ball, at a grazing root); dω_y = |sin t| dt dpsi at y, dA_x =
+// |d_m x d_s| dt dpsi on x's tangent plane. For parallel light dA_perp / dA_x, the beam's
+// cross-section dA_perp = |t| dt dpsi.
 float mnee_jacobian(Meridian m, float t, float h, Chain2D c, vec3 n, bool glass, float ior) {
   Chain2D lo = mnee_chain(m, t - h, glass, ior);
   Chain2D hi = mnee_chain(m, t + h, glass, ior);
-  vec3 d_m = (mnee_plane_offset(m, hi, n) - mnee_plane_offset(m, lo, n)) / (2.0 * h);
+  if (!lo.valid && !hi.valid) return 0.0;
+  vec3 at_lo = lo.valid ? mnee_plane_offset(m, lo, n) : mnee_plane_offset(m, c, n);
+  vec3 at_hi = hi.valid ? mnee_plane_offset(m, hi, n) : mnee_plane_offset(m, c, n);
+  vec3 d_m = (at_hi - at_lo) / ((lo.valid && hi.valid ? 2.0 : 1.0) * h);
   vec3 d = c.d_out.x * m.axis + c.d_out.y * m.side;
   vec3 e_psi = cross(m.axis, m.side);
   float rho = m.x2.y;

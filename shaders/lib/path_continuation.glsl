@@ -145,7 +145,7 @@ bool continue_path(inout PathState path) {
   // At the first MNEE_VERTICES non-delta vertices: the caustics seen directly (or through
   // smooth surfaces) and the light they throw on other surfaces; deeper ones are left to path
   // tracing (docs/DESIGN.md §3.10).
-  bool mnee_ran = light_sampling && !delta && path.mnee_vertices < MNEE_VERTICES && mnee_on();
+  bool mnee_ran = light_sampling && !delta && path.mnee_vertices < MNEE_VERTICES && mnee_on() && mnee_receiver(m);
   if (mnee_ran) ++path.mnee_vertices;
   if (mnee_ran) path.radiance += path.throughput * manifold_next_event(m, p, n, wo, hit.error_scale, path.bounces);
 #endif

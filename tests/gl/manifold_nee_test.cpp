@@ -216,9 +216,12 @@ TEST(ManifoldNee, CausticScenesCompileItIn) {
   EXPECT_FALSE(mnee_pays_off(load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/glass.glint")));
   const Scene default_project = load_project(std::string(GLINT_SOURCE_DIR) + "/projects/default.glint");
   EXPECT_FALSE(mnee_pays_off(default_project));
-  // Its sky has a sun: MNEE samples the map, not its lamp (large against the balls).
-  EXPECT_EQ(mnee_lights(default_project, kMneePeakedEnvironmentShare, false), kMneeEnvironment);
+  // Its sky has a sun, but its floor is glossy: MNEE samples neither the map nor its lamp
+  // (large against the balls) unless forced.
+  EXPECT_EQ(mnee_lights(default_project, kMneePeakedEnvironmentShare, false), 0);
   EXPECT_EQ(mnee_lights(default_project, 0.0, true), kMneeLamps | kMneeEnvironment);
+  const Scene env_dof = load_project(std::string(GLINT_SOURCE_DIR) + "/bench/scenes/env_dof.glint");
+  EXPECT_EQ(mnee_lights(env_dof, kMneePeakedEnvironmentShare, false), kMneeEnvironment);
   EXPECT_EQ(mnee_casters(caustic_scene(Ball::both, false)), (std::vector<int>{0, 1}));
 }
 
