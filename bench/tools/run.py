@@ -676,6 +676,7 @@ def ensure_llvm(allow_download):
         if r.returncode != 0 or not debs:
             log(f"  apt-get download libllvm19 failed: {r.stderr.strip()[:200]}")
         else:
+            os.makedirs(dest, exist_ok=True)
             subprocess.run(["dpkg", "-x", debs[0], dest], check=True)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -47,7 +47,7 @@ PathState start_path(Ray ray) {
 }
 
 #if defined(GLINT_MNEE)
-// The chain state after scattering at `hit` (of material type `type`) into wi: MNEE counts
+// The chain state after scattering at `hit` into wi: MNEE counts
 // exactly the paths that leave a vertex where it ran, reflect once off a caster from outside
 // (mirror, glass or thin glass), or refract into a glass caster and straight out of the same
 // one, and then meet an emitter or the environment map that it samples (lib/manifold_nee.glsl);

@@ -207,7 +207,7 @@ TEST(ManifoldNee, CausticScenesCompileItIn) {
   for (Ball ball : {Ball::glass, Ball::mirror, Ball::both})
     for (bool quad_lamp : {false, true}) EXPECT_TRUE(scene_needs_mnee(caustic_scene(ball, quad_lamp)));
   EXPECT_TRUE(scene_needs_mnee(mirror_caustic_on_a_wall()));
-  // The renderer's automatic choice: lamps small against the ball only.
+  // The renderer's automatic choice for lamps: small against the ball only.
   EXPECT_FALSE(mnee_pays_off(caustic_scene(Ball::glass, false)));
   Scene small_lamp = caustic_scene(Ball::glass, false);
   small_lamp.spheres.back().radius = 0.03f;
