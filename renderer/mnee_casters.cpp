@@ -108,15 +108,16 @@ bool mnee_pays_off(const Scene& scene) {
 
 bool scene_needs_mnee(const Scene& scene) {
   if (mnee_casters(scene).empty()) return false;
-  bool light = has_environment_map(scene), receiver = false;
-  auto visit = [&](const Material* m, bool sampled_shape) {
-    if (!m) return;
-    light = light || (emits(*m) && sampled_shape);
-    receiver = receiver || !is_delta(*m);
+  if (!has_environment_map(scene) && !has_sampled_lamp(scene)) return false;
+  auto receives = [&](const std::string& name) {
+    const Material* m = material_of(scene, name);
+    return m && !is_delta(*m);
   };
-  for (const Sphere& s : scene.spheres) visit(material_of(scene, s.material), true);
-  for (const Quad& q : scene.quads) visit(material_of(scene, q.material), quad_is_parallelogram(q.corners));
-  return light && receiver;
+  for (const Sphere& s : scene.spheres)
+    if (receives(s.material)) return true;
+  for (const Quad& q : scene.quads)
+    if (receives(q.material)) return true;
+  return false;
 }
 
 }  // namespace glint

@@ -7,16 +7,17 @@
 // axis through y and the centre (for the environment, the line through the centre along the
 // light's direction), so every chain to x lies in the plane through that axis and x and is a
 // ray from y at a signed angle t from the axis (parallel light: the ray along the axis at a
-// signed distance t from it). The 1-D residual g(t) (x's distance from the chain's outgoing ray) is scanned on a grid
-// and each sign change refined, so that every chain is found except root pairs closer than the
-// grid spacing (at a caustic's fold). General MNEE solves from one seed and misses the other
-// chains where several exist (Zeltner, Georgiev and Jakob 2020, "Specular Manifold Sampling").
+// signed distance t from it). The 1-D residual g(t) (x's distance from the chain's outgoing
+// ray) is scanned on a grid and each sign change refined, so that every chain is found except
+// root pairs closer than the grid spacing (at a caustic's fold). General MNEE solves from one
+// seed and misses the other chains where several exist (Zeltner, Georgiev and Jakob 2020,
+// "Specular Manifold Sampling").
 // The paths counted here are given weight 0 in the path tracer (path_continuation.glsl,
 // mnee_chain_state): a partition of path space (Veach 1997, ch. 10.3), no MIS weight needed.
 // GLSL only, part of the trace program when renderer/shader_features.cpp defines GLINT_MNEE.
 
 const int MNEE_MAX_CASTERS = 8;  // renderer/mnee_casters.h, kMaxMneeCasters
-uniform int u_caster_count;      // casters: smooth mirror or glass spheres (sphere indices)
+uniform int u_caster_count;      // casters: smooth mirror, glass or thin-glass spheres (indices)
 uniform int u_casters[MNEE_MAX_CASTERS];
 // Which lights MNEE samples (renderer/mnee_casters.h, mnee_lights): lamps, the environment map.
 uniform int u_mnee_lights;
@@ -280,7 +281,8 @@ struct MneeSetup {
 };
 
 // One chain's contribution at x (t a root): f Le T cos_y dω_y/dA_x (parallel light:
-// f Le T dA_perp/dA_x), times visibility of its segments, over the pdfs. f is the plain BSDF (eval_bsdf's value over |n.wi|).
+// f Le T dA_perp/dA_x), times visibility of its segments, over the pdfs. f is the plain BSDF
+// (eval_bsdf's value over |n.wi|).
 vec3 mnee_root(MneeSetup s, float t, float h, SurfaceMaterial m, vec3 x, vec3 n, vec3 wo,
                float error_scale) {
   Chain2D c = mnee_chain(s.m, t, s.glass, s.caster_material.ior);
