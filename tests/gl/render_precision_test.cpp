@@ -13,6 +13,7 @@
 #include "renderer/project_file.h"
 #include "renderer/scene_validation.h"
 #include "tests/gl/gl_test_support.h"
+#include "tests/gl/same_picture.h"
 
 namespace glint {
 namespace {
@@ -20,6 +21,9 @@ namespace {
 using test::all_finite;
 using test::empty_scene;
 using test::ensure_gl_context;
+using test::expect_agreement;
+using test::max_alpha;
+using test::transformed;
 
 Image render(const Scene& scene, int w, int h, int spp, int passes = 1,
              const RenderOptions& options = RenderOptions{}) {
@@ -28,62 +32,6 @@ Image render(const Scene& scene, int w, int h, int spp, int passes = 1,
   r.sync(scene, w, h);
   for (int i = 0; i < passes; ++i) r.trace(spp);
   return r.read_accumulation();
-}
-
-double lum(const Image& img, int x, int y) {
-  const float* p = img.at(x, y);
-  return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
-}
-
-double max_alpha(const Image& img) {
-  double m = 0;
-  for (size_t i = 3; i < img.pixels.size(); i += 4) m = std::max(m, double(img.pixels[i]));
-  return m;
-}
-
-// How image b differs from image a (same seed), against the noise of the sample count: `noise`
-// is the RMS per-pixel luminance difference between a and a render of the same scene with
-// another seed (sqrt(2) times the per-pixel standard deviation).
-struct Agreement {
-  double mean_difference = 0;  // mean over pixels of lum(b) - lum(a)
-  double rms_difference = 0;
-  double noise = 0;            // RMS of lum(a) - lum(a with another seed)
-  double mean_standard_error = 0;  // of an image mean, from `noise`: noise / sqrt(2 pixels)
-  double mean_a = 0;
-};
-
-Agreement agreement(const Image& a, const Image& b, const Image& a_other_seed) {
-  Agreement r;
-  const int n = a.width * a.height;
-  double s = 0, s2 = 0, noise2 = 0, sa = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      const double d = lum(b, x, y) - lum(a, x, y), e = lum(a_other_seed, x, y) - lum(a, x, y);
-      s += d;
-      s2 += d * d;
-      noise2 += e * e;
-      sa += lum(a, x, y);
-    }
-  r.mean_difference = s / n;
-  r.rms_difference = std::sqrt(s2 / n);
-  r.noise = std::sqrt(noise2 / n);
-  r.mean_standard_error = r.noise / std::sqrt(2.0 * n);
-  r.mean_a = sa / n;
-  return r;
-}
-
-// The images agree within the noise of their sample count: the image means within 4 standard
-// errors, and no more per-pixel difference than an independent render has (the same seed
-// draws the same random numbers, so a correct transformed render is closer than that; acne,
-// black speckles or light leaks add differences of the size of the signal).
-void expect_agreement(const Image& a, const Image& b, const Image& a_other_seed, const char* what) {
-  ASSERT_TRUE(all_finite(b)) << what;
-  EXPECT_EQ(max_alpha(b), 0.0) << what << ": discarded samples";
-  Agreement g = agreement(a, b, a_other_seed);
-  std::printf("%s: mean %.5g, mean diff %.3g (4 SE %.3g), rms diff %.3g, seed noise %.3g\n", what,
-              g.mean_a, g.mean_difference, 4 * g.mean_standard_error, g.rms_difference, g.noise);
-  EXPECT_LT(std::abs(g.mean_difference), 4.0 * g.mean_standard_error) << what;
-  EXPECT_LT(g.rms_difference, g.noise) << what;
 }
 
 // A small scene with contact (a sphere resting on the floor), a rough metal sphere, an area
@@ -105,22 +53,6 @@ Scene reference_scene() {
                      .corners = {glm::vec3{-4, 0, -4}, glm::vec3{-4, 0, 4}, glm::vec3{4, 0, -4}, glm::vec3{4, 0, 4}}});
   s.quads.push_back({.name = "lamp", .material = "lamp",
                      .corners = {glm::vec3{-1, 2.5f, -1}, glm::vec3{-1, 2.5f, 0}, glm::vec3{0, 2.5f, -1}, glm::vec3{0, 2.5f, 0}}});
-  return s;
-}
-
-// Every position scaled by `scale` and then moved by `offset`: the same picture.
-Scene transformed(Scene s, float scale, glm::vec3 offset) {
-  auto map = [&](glm::vec3 p) { return scale * p + offset; };
-  s.camera.position = map(s.camera.position);
-  s.camera.target = map(s.camera.target);
-  s.camera.focus_distance *= scale;
-  s.camera.aperture_radius *= scale;
-  for (Sphere& sp : s.spheres) {
-    sp.center = map(sp.center);
-    sp.radius *= scale;
-  }
-  for (Quad& q : s.quads)
-    for (glm::vec3& c : q.corners) c = map(c);
   return s;
 }
 
@@ -305,7 +237,7 @@ TEST(hard_SharedEdge, ClosedBoxLeaksNoLight) {
     Image img = render(box_scene(inside), 32, 32, 64);
     double worst = 0;
     for (int y = 0; y < img.height; ++y)
-      for (int x = 0; x < img.width; ++x) worst = std::max(worst, lum(img, x, y));
+      for (int x = 0; x < img.width; ++x) worst = std::max(worst, test::luminance_at(img, x, y));
     EXPECT_EQ(worst, 0.0) << (inside ? "camera inside, light outside" : "light inside, camera outside");
   }
 }
@@ -524,14 +456,14 @@ TEST(hard_LoopLimit, OnePassOfManySamplesMatchesManySmallPasses) {
   const int n = 16 * 16;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
-      mean_one += lum(one, x, y) / n;
-      mean_many += lum(many, x, y) / n;
+      mean_one += test::luminance_at(one, x, y) / n;
+      mean_many += test::luminance_at(many, x, y) / n;
     }
   // Same seed and sample indices: the two renders draw the same random numbers and differ only
   // by the grouping of the running mean's additions (float rounding, ~1e-7 relative); a
   // truncated loop changes a sample's value by O(1). Bound: 1e-3 of the mean (measured 7e-8).
   for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) d2 += std::pow(lum(one, x, y) - lum(many, x, y), 2);
+    for (int x = 0; x < 16; ++x) d2 += std::pow(test::luminance_at(one, x, y) - test::luminance_at(many, x, y), 2);
   std::printf("one pass %.5f, ten passes %.5f, rms pixel difference %.3g\n", mean_one, mean_many, std::sqrt(d2 / n));
   EXPECT_LT(std::sqrt(d2 / n), 1e-3 * std::max(mean_one, 1e-3));
 }
@@ -575,8 +507,8 @@ TEST(hard_LoopLimit, BvhSceneOfTenThousandSpheres) {
   double mean = 0, d2 = 0;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
-      mean += lum(one, x, y) / 256;
-      d2 += std::pow(lum(one, x, y) - lum(many, x, y), 2);
+      mean += test::luminance_at(one, x, y) / 256;
+      d2 += std::pow(test::luminance_at(one, x, y) - test::luminance_at(many, x, y), 2);
     }
   std::printf("mean %.5f, rms pixel difference %.3g\n", mean, std::sqrt(d2 / 256));
   EXPECT_GT(mean, 0.0);
