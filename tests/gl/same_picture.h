@@ -3,12 +3,14 @@
 // cases of tests/gl/render_precision_test.cpp and tests/gl/manifold_nee_test.cpp.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 
 #include "renderer/image.h"
+#include "renderer/image_metrics.h"
 #include "renderer/scene.h"
 #include "tests/gl/gl_test_support.h"
 
@@ -32,7 +34,7 @@ inline Scene transformed(Scene s, float scale, glm::vec3 offset) {
 
 inline double luminance_at(const Image& img, int x, int y) {
   const float* p = img.at(x, y);
-  return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+  return luminance(p[0], p[1], p[2]);
 }
 
 // How image b differs from image a (same seed), against the noise of the sample count: `noise`
